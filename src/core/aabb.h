@@ -1,0 +1,28 @@
+// Axis-aligned bounding box.
+#pragma once
+
+#include <limits>
+
+#include "core/math.h"
+
+namespace rad {
+
+struct Aabb {
+  Vec3 lo{std::numeric_limits<float>::infinity()};
+  Vec3 hi{-std::numeric_limits<float>::infinity()};
+
+  bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
+  void extend(const Vec3& p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  void extend(const Aabb& b) {
+    lo = glm::min(lo, b.lo);
+    hi = glm::max(hi, b.hi);
+  }
+  Vec3 extent() const { return empty() ? Vec3(0.0f) : hi - lo; }
+  Vec3 center() const { return (lo + hi) * 0.5f; }
+  float diagonal() const { return glm::length(extent()); }
+};
+
+}  // namespace rad

@@ -1,0 +1,34 @@
+#include "core/error.h"
+
+#include <cstdio>
+
+namespace rad {
+
+std::string to_string(const SourceLoc& loc) {
+  std::string s = loc.file;
+  if (loc.line > 0) {
+    s += ":" + std::to_string(loc.line);
+    if (loc.column > 0) s += ":" + std::to_string(loc.column);
+  }
+  return s;
+}
+
+namespace {
+std::string compose(const SourceLoc& loc, const char* kind, const std::string& message) {
+  std::string where = to_string(loc);
+  return where.empty() ? std::string(kind) + ": " + message
+                       : where + ": " + kind + ": " + message;
+}
+}  // namespace
+
+Error::Error(SourceLoc loc, const std::string& message)
+    : std::runtime_error(compose(loc, "error", message)), loc_(std::move(loc)), message_(message) {}
+
+Error::Error(const std::string& message)
+    : std::runtime_error("error: " + message), message_(message) {}
+
+void warn(const SourceLoc& loc, const std::string& message) {
+  std::fprintf(stderr, "%s\n", compose(loc, "warning", message).c_str());
+}
+
+}  // namespace rad

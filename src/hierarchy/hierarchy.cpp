@@ -1,0 +1,112 @@
+#include "hierarchy/hierarchy.h"
+
+#include <cmath>
+#include <fmt/format.h>
+
+namespace rad {
+
+namespace {
+
+struct Builder {
+  const SceneDescription& scene;
+  Hierarchy& out;
+  uint32_t dropped = 0;
+
+  // Depth-first: a Pure appends its triangles, so every subtree's triangles are contiguous.
+  int32_t add(int32_t desc_index, int32_t parent) {
+    const ObjectDescription& d = scene.objects[desc_index];
+    int32_t id = static_cast<int32_t>(out.objects.size());
+    out.objects.push_back({});
+    {
+      SceneObject& o = out.objects.back();
+      o.name = d.name;
+      o.kind = d.kind;
+      o.loc = d.loc;
+      o.parent = parent;
+      o.material = d.material;
+      o.first_triangle = static_cast<uint32_t>(out.triangles.size());
+    }
+    Aabb box;
+    if (d.kind == ObjectKind::Pure) {
+      for (const auto& t : d.triangles) {
+        Vec3 n = glm::cross(t[1] - t[0], t[2] - t[0]);
+        float len = glm::length(n);
+        float area = 0.5f * len;
+        if (!(area > 0.0f) || !std::isfinite(area)) {
+          ++dropped;
+          continue;
+        }
+        out.triangles.corners.push_back(t);
+        out.triangles.normal.push_back(n / len);
+        out.triangles.area.push_back(area);
+        out.triangles.object.push_back(id);
+        for (const Vec3& p : t) box.extend(p);
+      }
+    } else {
+      for (int32_t c : d.children) {
+        int32_t child = add(c, id);
+        out.objects[id].children.push_back(child);
+        box.extend(out.objects[child].box);
+      }
+    }
+    SceneObject& o = out.objects[id];
+    o.box = box;
+    o.triangle_count = static_cast<uint32_t>(out.triangles.size()) - o.first_triangle;
+    if (o.triangle_count == 0) {
+      throw Error(d.loc, fmt::format("{} \"{}\" has no triangles of non-zero area",
+                                     to_string(d.kind), d.name));
+    }
+    return id;
+  }
+};
+
+}  // namespace
+
+Hierarchy build_hierarchy(const SceneDescription& scene) {
+  Hierarchy h;
+  h.scene_name = scene.name;
+  h.source_path = scene.path;
+  Builder b{scene, h};
+  for (int32_t r : scene.roots) {
+    int32_t id = b.add(r, -1);
+    h.roots.push_back(id);
+    h.bounds.extend(h.objects[id].box);
+  }
+  h.dropped_degenerate = b.dropped;
+  if (b.dropped > 0) {
+    warn({scene.path}, fmt::format("dropped {} degenerate (zero-area) triangle{}", b.dropped,
+                                   b.dropped == 1 ? "" : "s"));
+  }
+  return h;
+}
+
+std::string summarize(const Hierarchy& h) {
+  size_t counts[3] = {0, 0, 0};
+  size_t emitters = 0, emitting_triangles = 0;
+  double emitted_power = 0.0;
+  for (const SceneObject& o : h.objects) {
+    ++counts[static_cast<int>(o.kind)];
+    if (o.kind == ObjectKind::Pure && max_component(o.material.emission) > 0.0f) {
+      ++emitters;
+      emitting_triangles += o.triangle_count;
+      for (uint32_t t = o.first_triangle; t < o.first_triangle + o.triangle_count; ++t) {
+        emitted_power += double(mean_component(o.material.emission)) * h.triangles.area[t];
+      }
+    }
+  }
+  std::string s;
+  s += fmt::format("Scene \"{}\" ({})\n", h.scene_name, h.source_path);
+  s += fmt::format("Objects: {} Assemblies, {} Composites, {} Pures\n", counts[0], counts[1],
+                   counts[2]);
+  s += fmt::format("Triangles: {}", h.triangles.size());
+  if (h.dropped_degenerate) s += fmt::format(" ({} degenerate dropped)", h.dropped_degenerate);
+  s += "\n";
+  s += fmt::format("Emitters: {} Pures, {} triangles, power {:.6g} (mean over channels)\n",
+                   emitters, emitting_triangles, emitted_power);
+  s += fmt::format("Bounding box: ({:.6g}, {:.6g}, {:.6g}) - ({:.6g}, {:.6g}, {:.6g})\n",
+                   h.bounds.lo.x, h.bounds.lo.y, h.bounds.lo.z, h.bounds.hi.x, h.bounds.hi.y,
+                   h.bounds.hi.z);
+  return s;
+}
+
+}  // namespace rad

@@ -1,0 +1,55 @@
+// The object hierarchy of SPEC §3 (Assembly / Composite / Pure) over a flat table of
+// world-space triangles, laid out depth-first so every object's triangles are contiguous.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/aabb.h"
+#include "core/error.h"
+#include "scene/description.h"
+
+namespace rad {
+
+/// Flat world-space triangles (structure of arrays). Index = triangle id = polygon id.
+struct Triangles {
+  std::vector<std::array<Vec3, 3>> corners;  // a, b, c
+  std::vector<Vec3> normal;                  // unit, (b-a)x(c-a) normalised
+  std::vector<float> area;
+  std::vector<int32_t> object;               // the Pure that owns the triangle
+  size_t size() const { return corners.size(); }
+};
+
+struct SceneObject {
+  std::string name;
+  ObjectKind kind = ObjectKind::Pure;
+  SourceLoc loc;
+  int32_t parent = -1;
+  std::vector<int32_t> children;
+  Aabb box;                     // of all triangles below
+  uint32_t first_triangle = 0;  // triangles below this object: [first, first + count)
+  uint32_t triangle_count = 0;
+  Material material;            // Pure only
+};
+
+struct Hierarchy {
+  std::string scene_name;
+  std::string source_path;
+  std::vector<SceneObject> objects;
+  std::vector<int32_t> roots;
+  Triangles triangles;
+  Aabb bounds;
+  uint32_t dropped_degenerate = 0;  // zero-area triangles removed while building
+};
+
+/// Builds the hierarchy: computes normals, areas and boxes, drops zero-area triangles (one
+/// warning counting them), and orders triangles depth-first. Throws rad::Error if an object
+/// ends up empty.
+Hierarchy build_hierarchy(const SceneDescription& scene);
+
+/// Counts per kind, triangles, emitters, bounds: the summary printed by `rad --check`.
+std::string summarize(const Hierarchy& h);
+
+}  // namespace rad

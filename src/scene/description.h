@@ -1,0 +1,43 @@
+// The scene as written in a description file (SPEC §2): a tree of objects, as parsed.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/math.h"
+
+namespace rad {
+
+enum class ObjectKind : uint8_t { Assembly, Composite, Pure };
+
+const char* to_string(ObjectKind kind);
+
+/// A Pure's surface: reflectance = Reflectivity x Color, emission = Emission x Color, per
+/// channel (SPEC §2). Emission is radiant exitance, in the same units as radiosity.
+struct Material {
+  Vec3 reflectance{0.0f};
+  Vec3 emission{0.0f};
+};
+
+/// One object of the description. Children index SceneDescription::objects.
+struct ObjectDescription {
+  std::string name;
+  ObjectKind kind = ObjectKind::Pure;
+  SourceLoc loc;                      // where "Object" was written
+  std::vector<int32_t> children;      // Assembly and Composite only
+  Material material;                  // Pure only
+  std::vector<std::array<Vec3, 3>> triangles;  // Pure only: corners a, b, c (front: (b-a)x(c-a))
+  std::vector<SourceLoc> triangle_locs;        // Pure only: where each triangle was written
+};
+
+struct SceneDescription {
+  std::string name;   // the scene's name (first string of the file)
+  std::string path;   // the description file
+  std::vector<ObjectDescription> objects;
+  std::vector<int32_t> roots;  // top-level objects, in file order
+};
+
+}  // namespace rad

@@ -1,0 +1,31 @@
+// The one visibility contract every backend shares: shadow segments and their epsilons.
+#pragma once
+
+#include "core/aabb.h"
+#include "core/math.h"
+
+namespace rad {
+
+/// A shadow segment: the points origin + t * direction for t in the open interval (0, 1).
+/// Any triangle crossing it there occludes it; hits at exactly t = 0 or t = 1 are unspecified,
+/// which is why make_shadow_segment moves both ends off their surfaces.
+struct Segment {
+  Vec3 origin;
+  Vec3 direction;  // unnormalised: origin + direction is the far end
+};
+
+/// Distance by which both ends of a shadow segment leave their surfaces, scaled to the scene
+/// (a fixed fraction of the bounding-box diagonal) so it is far above float rounding of the
+/// coordinates and far below any feature size.
+float shadow_offset(const Aabb& scene_bounds);
+
+/// Segment from a receiving point (with its surface normal) to a point on a source (with the
+/// source's normal), each end moved `offset` along its own normal towards the side it faces.
+inline Segment make_shadow_segment(const Vec3& from, const Vec3& from_normal, const Vec3& to,
+                                   const Vec3& to_normal, float offset) {
+  Vec3 a = from + from_normal * offset;
+  Vec3 b = to + to_normal * offset;
+  return {a, b - a};
+}
+
+}  // namespace rad
