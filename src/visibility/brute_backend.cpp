@@ -1,0 +1,51 @@
+#include "visibility/brute_backend.h"
+
+#include <cassert>
+#include <vector>
+
+#include "visibility/triangle_test.h"
+
+namespace rad {
+
+namespace {
+
+class BruteBackend final : public VisibilityBackend {
+ public:
+  explicit BruteBackend(const Hierarchy& h) : records_(make_triangle_records(h.triangles)) {}
+
+  BackendKind kind() const override { return BackendKind::Brute; }
+
+  void occluded(std::span<const Segment> segments, std::span<uint8_t> out,
+                VisibilityStats& stats) const override {
+    assert(out.size() == segments.size());
+    uint64_t blocked = 0, tests = 0;
+    for (size_t i = 0; i < segments.size(); ++i) {
+      const Segment& s = segments[i];
+      uint8_t hit = 0;
+      for (const TriangleRecord& r : records_) {
+        ++tests;
+        if (segment_hits_triangle(r, s.origin, s.direction)) {
+          hit = 1;
+          break;
+        }
+      }
+      out[i] = hit;
+      blocked += hit;
+    }
+    stats.rays += segments.size();
+    stats.occluded += blocked;
+    stats.triangle_tests += tests;
+  }
+
+ private:
+  std::vector<TriangleRecord> records_;
+};
+
+}  // namespace
+
+std::unique_ptr<VisibilityBackend> make_brute_backend(const Hierarchy& h,
+                                                      const VisibilityOptions& options) {
+  return std::make_unique<BruteBackend>(h);
+}
+
+}  // namespace rad

@@ -1,0 +1,149 @@
+#include "visibility/grid_backend.h"
+
+#include <tbb/parallel_for.h>
+
+#include <cassert>
+#include <vector>
+
+#include "visibility/grid_walker.h"
+#include "visibility/triangle_test.h"
+#include "visibility/uniform_grid.h"
+
+namespace rad {
+
+namespace {
+
+// Object boxes grow by this fraction of their own diagonal, plus kScenePad of the scene's size,
+// before the slab test and the grid: a triangle lying on its box's face (a wall, any flat
+// object) must not be missed by float rounding in the slab test or the walker.
+constexpr float kObjectPad = 1e-4f;
+constexpr float kScenePad = 1e-6f;
+
+// Direct-mapped "mailbox" of recently tested triangles (Amanatides & Woo 1987 §4 use one
+// mailbox per object; a small per-ray cache avoids per-object state shared between threads):
+// a triangle spanning several cells is usually tested once per ray.
+constexpr uint32_t kMailboxSize = 32;
+
+class GridBackend final : public VisibilityBackend {
+ public:
+  GridBackend(const Hierarchy& h, double cells_per_triangle)
+      : records_(make_triangle_records(h.triangles)) {
+    Vec3 scene_abs = glm::max(glm::abs(h.bounds.lo), glm::abs(h.bounds.hi));
+    float scene_size =
+        h.bounds.empty() ? 0.0f : glm::max(h.bounds.diagonal(), max_component(scene_abs));
+    scene_pad_ = kScenePad * scene_size;
+    std::vector<int32_t> grid_objects;
+    for (int32_t root : h.roots) flatten(h, root, grid_objects);
+    grids_.resize(grid_objects.size());
+    tbb::parallel_for(size_t(0), grid_objects.size(), [&](size_t g) {
+      const SceneObject& o = h.objects[grid_objects[g]];
+      grids_[g] = UniformGrid::build(h.triangles, o.first_triangle, o.triangle_count, padded(o.box),
+                                     cells_per_triangle);
+    });
+  }
+
+  BackendKind kind() const override { return BackendKind::Grid; }
+
+  void occluded(std::span<const Segment> segments, std::span<uint8_t> out,
+                VisibilityStats& stats) const override {
+    assert(out.size() == segments.size());
+    Counters c;
+    for (size_t i = 0; i < segments.size(); ++i) {
+      out[i] = trace(segments[i], c) ? 1 : 0;
+      c.occluded += out[i];
+    }
+    stats.rays += segments.size();
+    stats.occluded += c.occluded;
+    stats.box_trials += c.box_trials;
+    stats.box_hits += c.box_hits;
+    stats.cells_visited += c.cells;
+    stats.triangle_tests += c.tests;
+  }
+
+ private:
+  // One entry of the flattened object list, depth-first: after an Assembly come its children;
+  // `skip` is the entry after the whole subtree. grid < 0 for an Assembly.
+  struct Node {
+    Vec3 lo;
+    int32_t grid;
+    Vec3 hi;
+    uint32_t skip;
+  };
+
+  struct Counters {
+    uint64_t occluded = 0, box_trials = 0, box_hits = 0, cells = 0, tests = 0;
+  };
+
+  Aabb padded(const Aabb& box) const {
+    float pad = kObjectPad * box.diagonal() + scene_pad_;
+    return {box.lo - Vec3(pad), box.hi + Vec3(pad)};
+  }
+
+  void flatten(const Hierarchy& h, int32_t id, std::vector<int32_t>& grid_objects) {
+    const SceneObject& o = h.objects[id];
+    size_t at = nodes_.size();
+    Aabb box = padded(o.box);
+    nodes_.push_back({box.lo, -1, box.hi, 0});
+    if (o.kind == ObjectKind::Assembly) {
+      for (int32_t child : o.children) flatten(h, child, grid_objects);
+    } else {
+      nodes_[at].grid = int32_t(grid_objects.size());
+      grid_objects.push_back(id);
+    }
+    nodes_[at].skip = uint32_t(nodes_.size());
+  }
+
+  // SPEC §6: walk the object list, testing boxes; Assemblies descend, Composites and Pures walk
+  // their grid; the first triangle hit ends the ray.
+  bool trace(const Segment& s, Counters& c) const {
+    const Vec3 o = s.origin, d = s.direction;
+    const Vec3 inv(1.0f / d.x, 1.0f / d.y, 1.0f / d.z);
+    uint32_t mailbox[kMailboxSize];
+    for (uint32_t& m : mailbox) m = ~0u;
+    const uint32_t n = uint32_t(nodes_.size());
+    for (uint32_t i = 0; i < n;) {
+      const Node& node = nodes_[i];
+      ++c.box_trials;
+      float t0 = 0.0f, t1 = 1.0f;
+      if (!clip_segment_to_box(node.lo, node.hi, o, inv, t0, t1)) {
+        i = node.skip;
+        continue;
+      }
+      ++c.box_hits;
+      if (node.grid < 0) {
+        ++i;
+        continue;
+      }
+      const UniformGrid& grid = grids_[node.grid];
+      bool hit = walk_grid(grid.shape(), o, d, inv, t0, t1, [&](const GridCell& cell) {
+        ++c.cells;
+        for (uint32_t t : grid.cell(cell.index)) {
+          uint32_t& slot = mailbox[t & (kMailboxSize - 1)];
+          if (slot == t) continue;
+          slot = t;
+          ++c.tests;
+          if (segment_hits_triangle(records_[t], o, d)) return true;
+        }
+        return false;
+      });
+      if (hit) return true;
+      i = node.skip;
+    }
+    return false;
+  }
+
+  std::vector<TriangleRecord> records_;
+  std::vector<Node> nodes_;
+  std::vector<UniformGrid> grids_;
+  float scene_pad_ = 0.0f;
+};
+
+}  // namespace
+
+std::unique_ptr<VisibilityBackend> make_grid_backend(const Hierarchy& h,
+                                                     const VisibilityOptions& options,
+                                                     double cells_per_triangle) {
+  return std::make_unique<GridBackend>(h, cells_per_triangle);
+}
+
+}  // namespace rad
