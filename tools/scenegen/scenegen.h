@@ -1,0 +1,55 @@
+// Deterministic scene generators for tests and benchmarks (scenes built in code, no files).
+#pragma once
+
+#include <cstdint>
+#include <iosfwd>
+#include <string_view>
+
+#include "scene/description.h"
+
+namespace rad {
+
+/// The generated scene families.
+enum class SceneKind : uint8_t {
+  CornellBox,       // "cornell": 5 walls pre-tessellated k × k, a light, two blocks
+  Soup,             // "soup": N random triangles in a unit cube, one Pure
+  Nested,           // "nested": Assemblies of Assemblies holding Composites of Pures (furniture)
+  TeapotInStadium,  // "stadium": a finely tessellated sphere in a large, nearly empty room
+  Building,         // "building": N × M rooms with doors, lights and furniture Composites
+};
+
+const char* to_string(SceneKind kind);
+/// "cornell" | "soup" | "nested" | "stadium" | "building"; throws rad::Error otherwise.
+SceneKind parse_scene_kind(std::string_view name);
+
+/// A scene of the given family with about `triangles` triangles (within a factor ~1.5; at least
+/// a few dozen), the same for the same (kind, triangles, seed) on every platform.
+SceneDescription generate_scene(SceneKind kind, uint64_t triangles, uint64_t seed);
+
+/// Cornell box in [0, 1]³ (y up, open front at z = 1): floor, ceiling, back, red left and green
+/// right walls each cut into k × k quads (2k² triangles), a light quad under the ceiling and two
+/// blocks tessellated about k/4 per face edge. About 11.5 k² triangles.
+SceneDescription make_cornell_box(int k);
+
+/// n random triangles with centres uniform in [0, 1]³ and edges about 2/∛n long.
+SceneDescription make_triangle_soup(uint64_t n, uint64_t seed);
+
+/// A ground Pure and `blocks` Assemblies of two nested levels, each holding `per_block` furniture
+/// Composites (tables and chairs made of box Pures, each face tess × tess quads).
+SceneDescription make_nested_scene(int blocks, int per_block, int tess, uint64_t seed);
+
+/// A 100 × 30 × 100 room (inward walls, 8 × 8 quads each), a ceiling light, and a sphere of
+/// radius 0.5 with `stacks` × 2·stacks quads at its centre.
+SceneDescription make_teapot_in_stadium(int stacks);
+
+/// nx × nz rooms of 5 × 3 × 5 m, each an Assembly of a shell Pure (floor, ceiling, walls with door
+/// openings to the neighbours, cut into wall_tess × wall_tess quads per piece), a light, and
+/// furniture Composites (a table, chairs, a cabinet) made of boxes with furniture_tess² quads per
+/// face. About 1600 triangles per room with the defaults (wall_tess 4, furniture_tess 2).
+SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess, uint64_t seed);
+
+/// Writes the scene as a description file (SPEC §2) with every Pure's triangles in a Data block.
+/// Reflectance and emission are written as Reflectivity × Color and Emission × Color.
+void write_description(const SceneDescription& scene, std::ostream& out);
+
+}  // namespace rad
