@@ -1,16 +1,14 @@
 #include "core/error.h"
 
 #include <cstdio>
+#include <fmt/format.h>
 
 namespace rad {
 
 std::string to_string(const SourceLoc& loc) {
-  std::string s = loc.file;
-  if (loc.line > 0) {
-    s += ":" + std::to_string(loc.line);
-    if (loc.column > 0) s += ":" + std::to_string(loc.column);
-  }
-  return s;
+  if (loc.line <= 0) return loc.file;
+  if (loc.column <= 0) return fmt::format("{}:{}", loc.file, loc.line);
+  return fmt::format("{}:{}:{}", loc.file, loc.line, loc.column);
 }
 
 namespace {

@@ -1,0 +1,95 @@
+#include "app/cli.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <iostream>
+
+namespace rad {
+
+std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_code) {
+  // The original's flags, spelled the modern way before CLI11 sees them.
+  std::vector<std::string> args;
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    if (a == "-noshadows") a = "--no-shadows";
+    if (a == "-minsize") a = "--min-size";
+    args.push_back(a);
+  }
+  std::reverse(args.begin(), args.end());  // CLI11 parses a reversed vector
+
+  CommandLine c;
+  std::string backend = "embree", method = "analytic", tonemap = "clamp";
+  int samples = 16;
+  CLI::App app{
+      "rad: diffuse interreflection (radiosity) by progressive shooting with ray-traced\n"
+      "vertex-to-source form factors and adaptive subdivision.\n\n"
+      "  rad [options] SCENE.des OUTPUT.ply      solve and write every vertex's colour\n"
+      "  rad --check SCENE.des                   parse, validate and summarise only\n",
+      "rad"};
+  app.add_option("scene", c.scene, "Scene description file")->required();
+  app.add_option("output", c.output, "Output mesh (.ply)");
+  app.add_flag("--check", c.check, "Parse and validate the scene, print a summary, do not solve");
+  app.add_option("--backend", backend, "Shadow-ray backend: embree, grid or brute")
+      ->capture_default_str();
+  app.add_flag("!--no-packets", c.packets, "Trace shadow rays one at a time (Embree)");
+  app.add_option("--threads", c.threads, "Worker threads (0 = all cores)")->capture_default_str();
+  app.add_flag("!--no-shadows", c.solver.shadows, "No shadow rays: every visibility term is 1");
+  app.add_option("--min-size", c.solver.min_size,
+                 "Smallest element edge, scene units (default: scene diagonal / 256)");
+  app.add_option("--samples", samples, "Samples per source polygon (a square: 1, 4, 9, 16, ...)")
+      ->capture_default_str();
+  app.add_option("--form-factor", method,
+                 "analytic (exact unoccluded form factor x sampled visibility) or samples "
+                 "(EQ 7 sums, as the original)")
+      ->capture_default_str();
+  app.add_option("--threshold", c.solver.subdivision_threshold,
+                 "Subdivision limit: split where vertices differ by more than this fraction of "
+                 "the scene's radiosity scale (emitted power / total area)")
+      ->capture_default_str();
+  app.add_option("--intensity-cut", c.solver.intensity_cut,
+                 "No shadow rays when a vertex's unoccluded gain is below this fraction of the "
+                 "radiosity scale")
+      ->capture_default_str();
+  app.add_option("--converge", c.solver.converge,
+                 "Stop when unshot energy <= this fraction of the emitted energy")
+      ->capture_default_str();
+  app.add_option("--max-shots", c.solver.max_shots,
+                 "Stop after this many shots (0 writes the unlit scene: emission only)");
+  app.add_option("--time-limit", c.solver.time_limit, "Stop after this many seconds");
+  app.add_flag("--ascii", c.ascii, "Write text PLY instead of binary");
+  app.add_flag("!--no-ambient", c.ambient,
+               "Display colours without Cohen's ambient term (the stored radiosity never has it)");
+  app.add_option("--tonemap", tonemap, "Display tone curve: clamp, reinhard or aces")
+      ->capture_default_str();
+  app.add_option("--exposure", c.exposure, "Stops added to the automatic exposure")
+      ->capture_default_str();
+  app.add_option("--stats-json", c.stats_json, "Write run statistics as JSON to this file");
+  app.add_flag("-q,--quiet", c.quiet, "Print errors only");
+  try {
+    app.parse(args);
+    c.backend = parse_backend_kind(backend);
+    c.tonemap = parse_tone_curve(tonemap);
+    if (method == "analytic") {
+      c.solver.method = FormFactorMethod::Analytic;
+    } else if (method == "samples") {
+      c.solver.method = FormFactorMethod::Samples;
+    } else {
+      throw CLI::ValidationError("--form-factor", "expected analytic or samples, got " + method);
+    }
+    const int m = int(std::lround(std::sqrt(double(samples))));
+    if (samples < 1 || m * m != samples) {
+      throw CLI::ValidationError("--samples", "must be a square number (1, 4, 9, 16, ...)");
+    }
+    c.solver.sample_grid = m;
+    if (!c.check && c.output.empty()) {
+      throw CLI::RequiredError("output (or --check)");
+    }
+  } catch (const CLI::ParseError& e) {
+    *exit_code = app.exit(e);
+    return std::nullopt;
+  }
+  return c;
+}
+
+}  // namespace rad

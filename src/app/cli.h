@@ -1,0 +1,35 @@
+// The command line: options, their defaults and their parsing.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "export/tonemap.h"
+#include "solver/options.h"
+#include "visibility/backend.h"
+
+namespace rad {
+
+struct CommandLine {
+  std::string scene;
+  std::string output;       // empty with --check
+  bool check = false;       // parse, validate, summarise; no solve
+  BackendKind backend = BackendKind::Embree;
+  bool packets = true;
+  int threads = 0;          // 0: all cores
+  SolverOptions solver;
+  bool ascii = false;
+  bool ambient = true;
+  ToneCurve tonemap = ToneCurve::Clamp;
+  float exposure = 0.0f;    // stops added to the automatic exposure
+  std::string stats_json;
+  bool quiet = false;
+};
+
+/// Parses argv. Accepts the original's single-dash flags (-noshadows, -minsize F). Returns
+/// nothing when the program should exit with `exit_code` (after --help or a usage error, which
+/// it prints).
+std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_code);
+
+}  // namespace rad

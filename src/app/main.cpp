@@ -1,0 +1,96 @@
+// rad: scene text -> parse -> hierarchy -> mesh -> visibility -> solver -> export.
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fmt/format.h>
+#include <memory>
+
+#include "app/cli.h"
+#include "app/report.h"
+#include "core/error.h"
+#include "core/progress.h"
+#include "export/mesh_file.h"
+#include "export/output_mesh.h"
+#include "hierarchy/hierarchy.h"
+#include "scene/parser.h"
+#include "solver/solver.h"
+#include "visibility/backend.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+int run(const rad::CommandLine& cmd) {
+  using namespace rad;
+  const auto start = Clock::now();
+  Progress progress(cmd.quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);
+  auto say = [&](const std::string& s) { progress.message(s); };
+  RunTimes times;
+  if (!cmd.check) check_mesh_extension(cmd.output);
+
+  say("Reading description file...");
+  const SceneDescription scene = parse_scene_file(cmd.scene);
+  const Hierarchy hierarchy = build_hierarchy(scene);
+  times.parse = since(start);
+  if (cmd.check) {
+    std::fputs(summarize(hierarchy).c_str(), stdout);
+    return 0;
+  }
+
+  say("Initializing...");
+  const int threads = cmd.threads > 0 ? cmd.threads : tbb::info::default_concurrency();
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+  auto t = Clock::now();
+  const std::unique_ptr<VisibilityBackend> visibility =
+      make_visibility_backend(cmd.backend, hierarchy, VisibilityOptions{cmd.packets});
+  SolverState state = make_solver_state(hierarchy, cmd.solver);
+  times.build = since(t);
+
+  say(fmt::format("Starting Computation ({} triangles, {} backend, {} thread{})",
+                  hierarchy.triangles.size(), to_string(cmd.backend), threads,
+                  threads == 1 ? "" : "s"));
+  t = Clock::now();
+  const double log_goal = std::log(std::max(cmd.solver.converge, 1e-12));
+  const StopReason stop = solve(state, *visibility, [&](const SolverState& s, const ShotRecord& r) {
+    const double f = r.unshot_fraction > 0 ? std::log(r.unshot_fraction) / log_goal : 1.0;
+    progress.update(f, fmt::format("shot {}  unshot {:.2e}  elements {}", r.shot,
+                                   r.unshot_fraction, s.stats.subdivisions * 3 + s.mesh.polygons.size()));
+  });
+  times.solve = since(t);
+  progress.finish(fmt::format("{} after {} shots", to_string(stop), state.shots));
+
+  say(fmt::format("Writing results in file {}", cmd.output));
+  t = Clock::now();
+  const OutputMesh mesh = make_output_mesh(state, cmd.ambient);
+  MeshFileOptions mo;
+  mo.ascii = cmd.ascii;
+  mo.tone.curve = cmd.tonemap;
+  float brightest_emitter = 0.0f;
+  for (const Material& m : state.materials) brightest_emitter = std::max(brightest_emitter, max_component(m.emission));
+  mo.tone.scale = auto_exposure(mesh.display, brightest_emitter > 0 ? brightest_emitter * 0.5f : 1e30f, cmd.exposure);
+  write_mesh_file(cmd.output, mesh, mo);
+  times.write = since(t);
+  times.total = since(start);
+  if (!cmd.stats_json.empty()) write_stats_json(cmd.stats_json, cmd, state, stop, times);
+  if (!cmd.quiet) std::fputs(format_statistics(state, times.total).c_str(), stdout);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int code = 0;
+  const auto cmd = rad::parse_command_line(argc, argv, &code);
+  if (!cmd) return code;
+  try {
+    return run(*cmd);
+  } catch (const rad::Error& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+  }
+  return 1;
+}

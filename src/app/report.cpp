@@ -1,0 +1,91 @@
+#include "app/report.h"
+
+#include <sys/resource.h>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <tbb/info.h>
+
+#include "export/atomic_file.h"
+#include "mesh/patch_mesh.h"
+
+namespace rad {
+
+namespace {
+double percent(uint64_t a, uint64_t b) { return b ? 100.0 * double(a) / double(b) : 0.0; }
+}  // namespace
+
+std::string format_statistics(const SolverState& s, double elapsed) {
+  const VisibilityStats& r = s.stats.rays;
+  std::string o = "Ray-Tracing Statistics:\n";
+  o += fmt::format("Number of rays shot:          {}\n", r.rays);
+  o += fmt::format("Number of hits on polygons:   {} ({:.2f}%)\n", r.occluded,
+                   percent(r.occluded, r.rays));
+  o += fmt::format("Number of trials on bounding boxes: {}\n", r.box_trials);
+  o += fmt::format("Number of hits on bounding boxes: {} ({:.2f}%)\n", r.box_hits,
+                   percent(r.box_hits, r.box_trials));
+  o += fmt::format("Number of intensity cuts:    {}\n", s.stats.intensity_cuts);
+  o += fmt::format("Shots: {}, subdivisions: {}, vertices: {}, elements: {}\n", s.shots,
+                   s.stats.subdivisions, count_vertices(s.mesh), count_leaves(s.mesh));
+  o += fmt::format("Unshot energy left: {:.3g} of emitted\n", s.unshot_fraction());
+  o += fmt::format("Total elapsed time is {:.2f} seconds\n", elapsed);
+  return o;
+}
+
+size_t peak_memory_bytes() {
+  rusage u{};
+  if (getrusage(RUSAGE_SELF, &u) != 0) return 0;
+  return size_t(u.ru_maxrss) * 1024;
+}
+
+void write_stats_json(const std::string& path, const CommandLine& cmd, const SolverState& s,
+                      StopReason stop, const RunTimes& t) {
+  using nlohmann::json;
+  const VisibilityStats& r = s.stats.rays;
+  json history = json::array();
+  for (const ShotRecord& h : s.history) {
+    history.push_back({{"shot", h.shot}, {"source", h.source}, {"seconds", h.seconds},
+                       {"unshot_fraction", h.unshot_fraction}});
+  }
+  json j = {
+      {"schema", "rad-stats"},
+      {"version", 1},
+      {"scene", {{"path", cmd.scene}, {"name", s.hierarchy->scene_name},
+                 {"triangles", s.hierarchy->triangles.size()}}},
+      {"backend", to_string(cmd.backend)},
+      {"packets", cmd.packets},
+      {"threads", cmd.threads > 0 ? cmd.threads : tbb::info::default_concurrency()},
+      {"options",
+       {{"shadows", s.options.shadows},
+        {"samples", s.options.sample_grid * s.options.sample_grid},
+        {"form_factor",
+         s.options.method == FormFactorMethod::Analytic ? "analytic" : "samples"},
+        {"threshold", s.options.subdivision_threshold},
+        {"intensity_cut", s.options.intensity_cut},
+        {"converge", s.options.converge},
+        {"min_size", s.min_size}}},
+      {"stop_reason", to_string(stop)},
+      {"rays",
+       {{"shot", r.rays}, {"hits_on_polygons", r.occluded}, {"box_trials", r.box_trials},
+        {"box_hits", r.box_hits}, {"cells_visited", r.cells_visited},
+        {"triangle_tests", r.triangle_tests}, {"intensity_cuts", s.stats.intensity_cuts}}},
+      {"solver",
+       {{"shots", s.shots}, {"subdivisions", s.stats.subdivisions},
+        {"exact_midpoints", s.stats.exact_midpoints},
+        {"interpolated_midpoints", s.stats.interpolated_midpoints},
+        {"vertex_evaluations", s.stats.vertex_evaluations}, {"culled", s.stats.culled},
+        {"vertices", count_vertices(s.mesh)}, {"elements", count_leaves(s.mesh)},
+        {"emitted_energy", s.emitted_energy}, {"absorbed_energy", s.absorbed_energy},
+        {"unshot_fraction", s.unshot_fraction()}}},
+      {"seconds",
+       {{"parse", t.parse}, {"build", t.build}, {"solve", t.solve}, {"shoot", s.stats.shoot_seconds},
+        {"refine", s.stats.refine_seconds}, {"write", t.write}, {"total", t.total}}},
+      {"peak_memory_bytes", peak_memory_bytes()},
+      {"history", history},
+  };
+  AtomicFile f(path);
+  f.stream() << j.dump(2) << "\n";
+  f.commit();
+}
+
+}  // namespace rad

@@ -1,0 +1,26 @@
+// What a run prints and saves about itself: the original's statistics block and JSON.
+#pragma once
+
+#include <string>
+
+#include "app/cli.h"
+#include "solver/solver.h"
+
+namespace rad {
+
+/// Timings of the phases of one run, in seconds.
+struct RunTimes {
+  double parse = 0, build = 0, solve = 0, write = 0, total = 0;
+};
+
+/// The statistics block as the original printed it, plus rad's own counters.
+std::string format_statistics(const SolverState& s, double elapsed_seconds);
+
+/// Writes the JSON statistics (schema "rad-stats", version 1; see README) atomically.
+void write_stats_json(const std::string& path, const CommandLine& cmd, const SolverState& s,
+                      StopReason stop, const RunTimes& times);
+
+/// Peak resident memory of this process, bytes (0 if unknown).
+size_t peak_memory_bytes();
+
+}  // namespace rad

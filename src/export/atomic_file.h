@@ -1,0 +1,29 @@
+// Output files that appear complete or not at all: written under a temporary name in the same
+// folder, renamed over the final name only when complete.
+#pragma once
+
+#include <fstream>
+#include <string>
+
+namespace rad {
+
+class AtomicFile {
+ public:
+  /// Opens "<path>.tmp-<pid>" for binary writing; throws rad::Error if it cannot.
+  explicit AtomicFile(std::string path);
+  /// Removes the temporary file unless commit() succeeded.
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  std::ofstream& stream() { return out_; }
+  /// Flushes, closes and renames onto the final path; throws rad::Error on any failure.
+  void commit();
+
+ private:
+  std::string path_, temp_;
+  std::ofstream out_;
+  bool committed_ = false;
+};
+
+}  // namespace rad

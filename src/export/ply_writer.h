@@ -1,0 +1,16 @@
+// PLY output: the contract other tools read (see README "Output").
+#pragma once
+
+#include <ostream>
+
+#include "export/output_mesh.h"
+#include "export/tonemap.h"
+
+namespace rad {
+
+/// Writes one vertex element (float x y z; uchar red green blue = display colour, tone-mapped
+/// and sRGB-encoded; float radiosity_r/g/b = linear radiosity) and one face element
+/// (list uchar uint vertex_indices). Binary little-endian unless `ascii`.
+void write_ply(std::ostream& out, const OutputMesh& mesh, const ToneMap& tm, bool ascii);
+
+}  // namespace rad

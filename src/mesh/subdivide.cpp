@@ -1,0 +1,37 @@
+#include "mesh/subdivide.h"
+
+#include <cassert>
+
+namespace rad {
+
+int split_element(PolygonMesh& p, uint32_t e, NewMidpoint created[3]) {
+  assert(p.elements[e].leaf());
+  const uint32_t v0 = p.elements[e].v[0], v1 = p.elements[e].v[1], v2 = p.elements[e].v[2];
+  int n = 0;
+  auto mid = [&](uint32_t a, uint32_t b) {
+    auto [it, inserted] = p.midpoints.try_emplace(edge_key(a, b), 0u);
+    if (inserted) {
+      it->second = p.add_vertex((p.position[a] + p.position[b]) * 0.5f);
+      created[n++] = {it->second, a, b};
+    }
+    return it->second;
+  };
+  const uint32_t m01 = mid(v0, v1), m12 = mid(v1, v2), m20 = mid(v2, v0);
+  const float child_area = p.elements[e].area * 0.25f;
+  const int32_t first = int32_t(p.elements.size());
+  p.elements.push_back({{v0, m01, m20}, -1, child_area});
+  p.elements.push_back({{m01, v1, m12}, -1, child_area});
+  p.elements.push_back({{m20, m12, v2}, -1, child_area});
+  p.elements.push_back({{m12, m20, m01}, -1, child_area});
+  p.elements[e].first_child = first;
+  return n;
+}
+
+float longest_edge(const PolygonMesh& p, uint32_t e) {
+  const Element& el = p.elements[e];
+  const Vec3 &a = p.position[el.v[0]], &b = p.position[el.v[1]], &c = p.position[el.v[2]];
+  return glm::sqrt(glm::max(glm::dot(b - a, b - a), glm::max(glm::dot(c - b, c - b),
+                                                              glm::dot(a - c, a - c))));
+}
+
+}  // namespace rad

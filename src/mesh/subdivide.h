@@ -1,0 +1,26 @@
+// Splitting a subdivision element into four by its edge midpoints (SPEC §5).
+#pragma once
+
+#include <cstdint>
+
+#include "mesh/patch_mesh.h"
+
+namespace rad {
+
+/// A midpoint vertex created by split_element, with the edge it halves.
+struct NewMidpoint {
+  uint32_t vertex;
+  uint32_t a, b;
+};
+
+/// Splits leaf element `e` of `p` into four children (corner a, corner b, corner c, middle).
+/// A midpoint already made by a neighbouring element of the same polygon is reused, so shared
+/// vertices exist once. Midpoints created here get the position of the edge's middle and zero
+/// radiosity; they are written to `created` (up to three) and their count returned. The caller
+/// sets their radiosity.
+int split_element(PolygonMesh& p, uint32_t e, NewMidpoint created[3]);
+
+/// Longest edge of element `e`.
+float longest_edge(const PolygonMesh& p, uint32_t e);
+
+}  // namespace rad

@@ -1,0 +1,39 @@
+// What one receiving point gathers from one shooting source (SPEC §4, EQ 7).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "solver/shot_source.h"
+#include "solver/solver_state.h"
+
+namespace rad {
+
+/// Per-thread buffers and counters for gathering; reused across vertices (no allocation in
+/// the loop once sized).
+struct GatherScratch {
+  std::vector<Segment> segments;
+  std::vector<uint8_t> blocked;
+  std::vector<float> weight;
+  std::vector<uint32_t> active;
+  SolverStats stats;
+};
+
+struct GatherSettings {
+  FormFactorMethod method = FormFactorMethod::Analytic;
+  bool shadows = true;
+  float cut = 0.0f;           // absolute intensity-cut level (radiosity units)
+  float shadow_offset = 0.0f;
+  float inset = 1e-4f;        // fraction of the way to the polygon centroid a point moves
+};
+
+/// The irradiance-like gain H (radiosity before the receiver's reflectance) that the point `x`
+/// with unit normal `n` on a receiving polygon whose centroid is `centroid` gets from `src`.
+/// x is first moved a tiny fraction towards the centroid, so a vertex on the line where two
+/// polygons meet is evaluated inside its own polygon, where the neighbour is not edge-on.
+/// Thread-safe given a per-thread scratch.
+Vec3 gather_from_source(const Vec3& x, const Vec3& n, const Vec3& centroid, const ShotSource& src,
+                        const VisibilityBackend& vis, const GatherSettings& settings,
+                        GatherScratch& scratch);
+
+}  // namespace rad

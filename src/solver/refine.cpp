@@ -1,0 +1,109 @@
+#include "solver/refine.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include "mesh/subdivide.h"
+#include "solver/shoot.h"
+
+namespace rad {
+
+namespace {
+
+struct ExactVertex {
+  uint32_t polygon, vertex, a, b;
+};
+
+}  // namespace
+
+void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,
+                       const std::vector<uint8_t>& received) {
+  const Triangles& tris = s.hierarchy->triangles;
+  const size_t np = tris.size();
+  const float limit = s.options.subdivision_threshold * s.radiosity_scale;
+  const float min_split_edge = 2.0f * s.min_size;  // children must keep edges >= min_size
+  const GatherSettings settings = gather_settings(s);
+
+  std::vector<std::vector<uint32_t>> check(np), next(np);
+  std::vector<std::vector<ExactVertex>> exact(np);
+  std::vector<uint64_t> splits(np, 0), interpolated(np, 0);
+  tbb::parallel_for(size_t(0), np, [&](size_t p) {
+    if (received[p]) for_each_leaf(s.mesh.polygons[p], [&](uint32_t e) { check[p].push_back(e); });
+  });
+
+  std::vector<ExactVertex> flat;
+  tbb::enumerable_thread_specific<GatherScratch> scratch;
+  for (bool any = true; any;) {
+    // 1. Split what needs it; interpolated midpoints get their values now (their ends are
+    //    final: only vertices of elements checked in this pass are ends).
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, np, 16), [&](const auto& range) {
+      for (size_t p = range.begin(); p != range.end(); ++p) {
+        next[p].clear();
+        exact[p].clear();
+        if (check[p].empty()) continue;
+        PolygonMesh& m = s.mesh.polygons[p];
+        const Material& mat = s.material_of(p);
+        auto B = [&](uint32_t v) { return mat.emission + mat.reflectance * m.irradiance[v]; };
+        for (uint32_t e : check[p]) {
+          const uint32_t v[3] = {m.elements[e].v[0], m.elements[e].v[1], m.elements[e].v[2]};
+          const Vec3 b0 = B(v[0]), b1 = B(v[1]), b2 = B(v[2]);
+          const bool d01 = differs(b0, b1, limit), d12 = differs(b1, b2, limit),
+                     d20 = differs(b2, b0, limit);
+          if (!(d01 || d12 || d20) || longest_edge(m, e) < min_split_edge) continue;
+          const bool exact_edge[3][3] = {{false, d01, d20}, {d01, false, d12}, {d20, d12, false}};
+          auto index_of = [&](uint32_t x) { return x == v[0] ? 0 : x == v[1] ? 1 : 2; };
+          NewMidpoint created[3];
+          const int n = split_element(m, e, created);
+          ++splits[p];
+          for (int k = 0; k < n; ++k) {
+            const NewMidpoint& c = created[k];
+            if (exact_edge[index_of(c.a)][index_of(c.b)]) {
+              exact[p].push_back({uint32_t(p), c.vertex, c.a, c.b});
+            } else {
+              m.irradiance[c.vertex] = (m.irradiance[c.a] + m.irradiance[c.b]) * 0.5f;
+              m.unshot[c.vertex] = (m.unshot[c.a] + m.unshot[c.b]) * 0.5f;
+              m.shot[c.vertex] = (m.shot[c.a] + m.shot[c.b]) * 0.5f;
+              ++interpolated[p];
+            }
+          }
+          const uint32_t first = uint32_t(m.elements[e].first_child);
+          for (uint32_t c = 0; c < 4; ++c) next[p].push_back(first + c);
+        }
+      }
+    });
+    // 2. Compute the current shot exactly at the midpoints of edges beyond the limit.
+    flat.clear();
+    for (size_t p = 0; p < np; ++p) flat.insert(flat.end(), exact[p].begin(), exact[p].end());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, flat.size(), 16), [&](const auto& range) {
+      GatherScratch& sc = scratch.local();
+      for (size_t i = range.begin(); i != range.end(); ++i) {
+        const ExactVertex& x = flat[i];
+        PolygonMesh& m = s.mesh.polygons[x.polygon];
+        const Vec3 rho = s.material_of(x.polygon).reflectance;
+        const Vec3 dh = gather_from_source(m.position[x.vertex], tris.normal[x.polygon],
+                                           polygon_centroid(tris, x.polygon), src, vis,
+                                           settings, sc);
+        const Vec3 earlier_h =
+            (m.irradiance[x.a] - m.shot[x.a] + m.irradiance[x.b] - m.shot[x.b]) * 0.5f;
+        const Vec3 earlier_u =
+            (m.unshot[x.a] - rho * m.shot[x.a] + m.unshot[x.b] - rho * m.shot[x.b]) * 0.5f;
+        m.irradiance[x.vertex] = earlier_h + dh;
+        m.unshot[x.vertex] = earlier_u + rho * dh;
+        m.shot[x.vertex] = dh;
+      }
+    });
+    s.stats.exact_midpoints += flat.size();
+    any = false;
+    for (size_t p = 0; p < np; ++p) {
+      std::swap(check[p], next[p]);
+      any |= !check[p].empty();
+    }
+  }
+  for (size_t p = 0; p < np; ++p) {
+    s.stats.subdivisions += splits[p];
+    s.stats.interpolated_midpoints += interpolated[p];
+  }
+  for (const GatherScratch& sc : scratch) s.stats += sc.stats;
+}
+
+}  // namespace rad

@@ -1,0 +1,26 @@
+// Adaptive subdivision after a shot (SPEC §5).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "solver/gather.h"
+#include "solver/shot_source.h"
+
+namespace rad {
+
+/// True when the radiosities of two vertices differ by more than `limit` in some channel.
+inline bool differs(const Vec3& a, const Vec3& b, float limit) {
+  return max_component(glm::abs(a - b)) > limit;
+}
+
+/// Splits, level by level, every leaf of the received polygons whose vertices differ by more
+/// than the subdivision limit, until within the limit or at the minimum size. A new midpoint
+/// on an edge whose ends differ by more than the limit gets the earlier shots' part
+/// interpolated and the current shot's part computed exactly (in parallel over all such
+/// vertices); one on an edge within the limit gets the mean of its ends, so an unsplit
+/// neighbour sharing that edge shows no discontinuity.
+void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,
+                       const std::vector<uint8_t>& received);
+
+}  // namespace rad

@@ -1,0 +1,25 @@
+// One shot of progressive refinement: every receiving vertex gathers from the source.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "solver/gather.h"
+#include "solver/shot_source.h"
+
+namespace rad {
+
+/// Gather settings for a state (absolute cut level from the relative option).
+GatherSettings gather_settings(const SolverState& s);
+
+/// Centroid of polygon p.
+Vec3 polygon_centroid(const Triangles& t, size_t p);
+
+/// Shoots `src` (whose unshot radiosity the caller has already cleared) to every vertex of every
+/// other polygon, in parallel over polygons and their vertices (TBB). Each vertex gets
+/// H += dH, unshot += rho * dH and shot = dH. received[p] is set to 1 for polygons that may have
+/// gained (the others' `shot` values are stale). Statistics are summed into s.stats.
+void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,
+                        std::vector<uint8_t>& received);
+
+}  // namespace rad

@@ -1,0 +1,27 @@
+#include "solver/shot_source.h"
+
+#include "mesh/sample_points.h"
+
+namespace rad {
+
+ShotSource make_shot_source(const SolverState& s, int32_t p, const std::vector<Vec3>& bary) {
+  const Triangles& tris = s.hierarchy->triangles;
+  const PolygonMesh& mesh = s.mesh.polygons[size_t(p)];
+  ShotSource src;
+  src.polygon = p;
+  for (int k = 0; k < 3; ++k) src.corner[k] = tris.corners[size_t(p)][k];
+  src.normal = tris.normal[size_t(p)];
+  src.area = tris.area[size_t(p)];
+  src.area_per_sample = src.area / float(bary.size());
+  src.sample.reserve(bary.size());
+  src.unshot.reserve(bary.size());
+  for (const Vec3& w : bary) {
+    src.sample.push_back(src.corner[0] * w.x + src.corner[1] * w.y + src.corner[2] * w.z);
+    src.unshot.push_back(interpolate_at(mesh, mesh.unshot, w));
+    src.mean_unshot += src.unshot.back();
+  }
+  src.mean_unshot /= float(bary.size());
+  return src;
+}
+
+}  // namespace rad

@@ -1,0 +1,99 @@
+#include "solver/solver.h"
+
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+
+#include "solver/refine.h"
+#include "solver/shoot.h"
+
+namespace rad {
+
+std::optional<int32_t> choose_shooter(const SolverState& s) {
+  int32_t best = -1;
+  double best_energy = 0.0;
+  for (size_t p = 0; p < s.unshot_energy.size(); ++p) {
+    if (s.unshot_energy[p] > best_energy) {  // strict: ties keep the lowest index
+      best_energy = s.unshot_energy[p];
+      best = int32_t(p);
+    }
+  }
+  if (best < 0) return std::nullopt;
+  return best;
+}
+
+std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::optional<int32_t> shooter = choose_shooter(s);
+  if (!shooter) return std::nullopt;
+  const size_t src_id = size_t(*shooter);
+
+  const ShotSource src = make_shot_source(s, *shooter, s.sample_barycentrics);
+  PolygonMesh& source_mesh = s.mesh.polygons[src_id];
+  for (Vec3& u : source_mesh.unshot) u = Vec3(0.0f);
+  s.unshot_energy[src_id] = 0.0;
+
+  std::vector<uint8_t> received;
+  shoot_to_receivers(s, src, vis, received);
+  const auto t1 = std::chrono::steady_clock::now();
+  refine_after_shot(s, src, vis, received);
+
+  // Bookkeeping per received polygon, summed in index order so the result does not depend on
+  // the thread count.
+  const size_t np = received.size();
+  std::vector<double> absorbed(np, 0.0);
+  tbb::parallel_for(size_t(0), np, [&](size_t p) {
+    if (!received[p]) return;
+    const PolygonMesh& m = s.mesh.polygons[p];
+    const Vec3 absorptance = Vec3(1.0f) - s.material_of(p).reflectance;
+    double a = 0.0;
+    for_each_leaf(m, [&](uint32_t e) {
+      const Element& el = m.elements[e];
+      a += double(el.area) *
+           mean_component(absorptance * (m.shot[el.v[0]] + m.shot[el.v[1]] + m.shot[el.v[2]])) /
+           3.0;
+    });
+    absorbed[p] = a;
+    s.unshot_energy[p] = polygon_unshot_energy(m);
+  });
+  for (double a : absorbed) s.absorbed_energy += a;
+  const auto t2 = std::chrono::steady_clock::now();
+  s.stats.shoot_seconds += std::chrono::duration<double>(t1 - t0).count();
+  s.stats.refine_seconds += std::chrono::duration<double>(t2 - t1).count();
+
+  ++s.shots;
+  ShotRecord r{s.shots, *shooter, s.stats.shoot_seconds + s.stats.refine_seconds,
+               s.unshot_fraction()};
+  s.history.push_back(r);
+  return r;
+}
+
+const char* to_string(StopReason r) {
+  switch (r) {
+    case StopReason::Converged: return "converged";
+    case StopReason::MaxShots: return "shot limit reached";
+    case StopReason::TimeLimit: return "time limit reached";
+    case StopReason::NothingToShoot: return "nothing left to shoot";
+  }
+  return "?";
+}
+
+StopReason solve(SolverState& s, const VisibilityBackend& vis,
+                 const std::function<void(const SolverState&, const ShotRecord&)>& on_shot) {
+  const auto start = std::chrono::steady_clock::now();
+  const SolverOptions& o = s.options;
+  for (;;) {
+    if (s.unshot_fraction() <= o.converge) return StopReason::Converged;
+    if (o.max_shots >= 0 && s.shots >= o.max_shots) return StopReason::MaxShots;
+    if (o.time_limit > 0.0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >=
+            o.time_limit) {
+      return StopReason::TimeLimit;
+    }
+    const std::optional<ShotRecord> r = step(s, vis);
+    if (!r) return StopReason::NothingToShoot;
+    if (on_shot) on_shot(s, *r);
+  }
+}
+
+}  // namespace rad

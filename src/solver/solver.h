@@ -1,0 +1,32 @@
+// Progressive refinement radiosity (Cohen, Chen, Wallace, Greenberg, SIGGRAPH 1988) with
+// ray-traced vertex-to-source form factors (Wallace, Elmquist, Haines, SIGGRAPH 1989), driven
+// shot by shot by its caller.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+
+#include "solver/solver_state.h"
+
+namespace rad {
+
+/// The polygon with the most unshot energy; ties go to the lowest index. None when nothing is
+/// left to shoot.
+std::optional<int32_t> choose_shooter(const SolverState& s);
+
+/// One shot: choose the shooter, shoot it to every receiving vertex, refine the receivers,
+/// update the energy bookkeeping and the history. Returns the record, or nothing when there
+/// was nothing to shoot. Parallel inside (TBB); call from one thread.
+std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis);
+
+/// Why solve() stopped.
+enum class StopReason { Converged, MaxShots, TimeLimit, NothingToShoot };
+const char* to_string(StopReason r);
+
+/// Steps until unshot <= converge x emitted, or max shots, or the time limit. `on_shot` (if
+/// set) is called after every shot, between steps, where the state may be read.
+StopReason solve(SolverState& s, const VisibilityBackend& vis,
+                 const std::function<void(const SolverState&, const ShotRecord&)>& on_shot = {});
+
+}  // namespace rad

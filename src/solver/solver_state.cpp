@@ -1,0 +1,84 @@
+#include "solver/solver_state.h"
+
+#include "mesh/sample_points.h"
+#include "visibility/segment.h"
+
+namespace rad {
+
+SolverStats& SolverStats::operator+=(const SolverStats& o) {
+  rays += o.rays;
+  intensity_cuts += o.intensity_cuts;
+  culled += o.culled;
+  vertex_evaluations += o.vertex_evaluations;
+  subdivisions += o.subdivisions;
+  exact_midpoints += o.exact_midpoints;
+  interpolated_midpoints += o.interpolated_midpoints;
+  shoot_seconds += o.shoot_seconds;
+  refine_seconds += o.refine_seconds;
+  return *this;
+}
+
+double polygon_unshot_energy(const PolygonMesh& p) {
+  double e = 0.0;
+  for_each_leaf(p, [&](uint32_t i) {
+    const Element& el = p.elements[i];
+    const Vec3 sum = p.unshot[el.v[0]] + p.unshot[el.v[1]] + p.unshot[el.v[2]];
+    e += double(el.area) * double(mean_component(sum)) / 3.0;
+  });
+  return e;
+}
+
+double SolverState::unshot_total() const {
+  double t = 0.0;
+  for (double e : unshot_energy) t += e;
+  return t;
+}
+
+SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) {
+  SolverState s;
+  s.hierarchy = &h;
+  s.options = options;
+  s.mesh = make_mesh(h);
+  s.materials.reserve(h.objects.size());
+  for (const SceneObject& o : h.objects) s.materials.push_back(o.material);
+  s.unshot_energy.assign(h.triangles.size(), 0.0);
+  double total_area = 0.0;
+  for (size_t t = 0; t < h.triangles.size(); ++t) {
+    const Vec3 e = s.material_of(t).emission;
+    PolygonMesh& p = s.mesh.polygons[t];
+    for (auto& u : p.unshot) u = e;
+    s.unshot_energy[t] = polygon_unshot_energy(p);
+    s.emitted_energy += s.unshot_energy[t];
+    total_area += h.triangles.area[t];
+  }
+  s.radiosity_scale = total_area > 0.0 ? float(s.emitted_energy / total_area) : 1.0f;
+  if (!(s.radiosity_scale > 0.0f)) s.radiosity_scale = 1.0f;
+  // Default minimum size: 1/256 of the scene diagonal (about 2 mm in the 0.55 m Cornell box).
+  s.min_size = options.min_size > 0.0f ? options.min_size : h.bounds.diagonal() / 256.0f;
+  s.shadow_offset = shadow_offset(h.bounds);
+  s.sample_barycentrics = regular_sample_barycentrics(options.sample_grid);
+  return s;
+}
+
+Vec3 ambient_radiosity(const SolverState& s) {
+  const Hierarchy& h = *s.hierarchy;
+  DVec3 unshot(0.0), rho(0.0);
+  double area = 0.0;
+  for (size_t t = 0; t < h.triangles.size(); ++t) {
+    const PolygonMesh& p = s.mesh.polygons[t];
+    DVec3 u(0.0);
+    for_each_leaf(p, [&](uint32_t i) {
+      const Element& el = p.elements[i];
+      u += DVec3(p.unshot[el.v[0]] + p.unshot[el.v[1]] + p.unshot[el.v[2]]) *
+           (double(el.area) / 3.0);
+    });
+    unshot += u;
+    rho += DVec3(s.material_of(t).reflectance) * double(h.triangles.area[t]);
+    area += h.triangles.area[t];
+  }
+  if (area <= 0.0) return Vec3(0.0f);
+  const DVec3 mean_rho = rho / area;
+  return Vec3(unshot / area / (DVec3(1.0) - glm::min(mean_rho, DVec3(0.999))));
+}
+
+}  // namespace rad

@@ -1,0 +1,80 @@
+// Everything the progressive solver knows between two shots; callers may read it any time
+// between steps (the interactive mode edits materials here and continues).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "hierarchy/hierarchy.h"
+#include "mesh/patch_mesh.h"
+#include "solver/options.h"
+#include "visibility/backend.h"
+
+namespace rad {
+
+/// Counters of a solve, summed over shots (per-thread during a shot, combined after it).
+struct SolverStats {
+  VisibilityStats rays;
+  uint64_t intensity_cuts = 0;      // shadow rays skipped by the intensity cut
+  uint64_t culled = 0;              // vertex evaluations skipped: source behind or facing away
+  uint64_t vertex_evaluations = 0;  // vertex-to-source gathers computed
+  uint64_t subdivisions = 0;        // elements split into four
+  uint64_t exact_midpoints = 0;     // new vertices whose shot was computed
+  uint64_t interpolated_midpoints = 0;
+  double shoot_seconds = 0.0, refine_seconds = 0.0;
+
+  SolverStats& operator+=(const SolverStats& o);
+};
+
+/// One line of the convergence history.
+struct ShotRecord {
+  int64_t shot;           // 1-based
+  int32_t source;         // polygon that shot
+  double seconds;         // since the solve began
+  double unshot_fraction; // unshot / emitted energy after the shot
+};
+
+struct SolverState {
+  const Hierarchy* hierarchy = nullptr;
+  SolverOptions options;
+  Mesh mesh;
+  /// Materials per hierarchy object (copied so they can be edited between shots).
+  std::vector<Material> materials;
+  /// Per polygon: unshot energy (area-integrated mean-channel unshot radiosity), kept current.
+  std::vector<double> unshot_energy;
+  double emitted_energy = 0.0;   // sum of area x mean-channel emission
+  double absorbed_energy = 0.0;  // sum over shots of received energy not reflected
+  float radiosity_scale = 1.0f;  // emitted power / total area: what relative limits scale by
+  float min_size = 0.0f;         // smallest element edge
+  float shadow_offset = 0.0f;
+  std::vector<Vec3> sample_barycentrics;  // where a source is sampled, in its own barycentrics
+  int64_t shots = 0;
+  SolverStats stats;
+  std::vector<ShotRecord> history;
+
+  const Material& material_of(size_t polygon) const {
+    return materials[size_t(hierarchy->triangles.object[polygon])];
+  }
+  /// Radiosity B = E + rho * H of vertex v of polygon p.
+  Vec3 radiosity(size_t p, uint32_t v) const {
+    const Material& m = material_of(p);
+    return m.emission + m.reflectance * mesh.polygons[p].irradiance[v];
+  }
+  double unshot_total() const;
+  double unshot_fraction() const {
+    return emitted_energy > 0.0 ? unshot_total() / emitted_energy : 0.0;
+  }
+};
+
+/// The state before the first shot: the unsplit mesh, emitters' unshot radiosity = emission.
+/// Keeps a pointer to `h`, which must outlive the state.
+SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options);
+
+/// Unshot energy of polygon p integrated over its leaf elements (mean over channels).
+double polygon_unshot_energy(const PolygonMesh& p);
+
+/// Cohen et al. 1988 ambient term: the unshot energy spread over the scene and reflected
+/// 1/(1 - mean reflectance) times. For display only; never added to stored radiosity.
+Vec3 ambient_radiosity(const SolverState& s);
+
+}  // namespace rad

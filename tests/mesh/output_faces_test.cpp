@@ -1,0 +1,53 @@
+#include "mesh/output_faces.h"
+
+#include <gtest/gtest.h>
+
+#include "mesh_fixtures.h"
+
+namespace rad {
+namespace {
+
+std::vector<Vec3> positions_with_centroids(const PolygonMesh& p, const PolygonFaces& f) {
+  std::vector<Vec3> pos = p.position;
+  for (const auto& c : f.centroids) pos.push_back((p.position[c[0]] + p.position[c[1]] + p.position[c[2]]) / 3.0f);
+  return pos;
+}
+
+TEST(OutputFaces, UnsplitPolygonIsOneFace) {
+  const PolygonMesh p = testing::one_polygon();
+  const PolygonFaces f = triangulate_leaves(p);
+  EXPECT_EQ(f.triangles, (std::vector<uint32_t>{0, 1, 2}));
+  EXPECT_TRUE(f.centroids.empty());
+}
+
+// Faces tile the polygon exactly (same total area, same orientation, none degenerate) and no
+// vertex lies strictly inside a face's edge: no T-junction, hence no crack.
+TEST(OutputFaces, FacesTileThePolygonWithoutTJunctions) {
+  for (unsigned seed = 1; seed <= 20; ++seed) {
+    PolygonMesh p = testing::one_polygon({0, 0, 0}, {1, 0, 0}, {0.3f, 0.9f, 0});
+    testing::split_randomly(p, int(seed * 3), seed);
+    const PolygonFaces f = triangulate_leaves(p);
+    const auto pos = positions_with_centroids(p, f);
+    double area = 0.0;
+    for (size_t t = 0; t < f.triangles.size(); t += 3) {
+      const Vec3 a = pos[f.triangles[t]], b = pos[f.triangles[t + 1]], c = pos[f.triangles[t + 2]];
+      const float z = glm::cross(b - a, c - a).z;
+      ASSERT_GT(z, 1e-9f) << "degenerate or flipped face, seed " << seed;
+      area += 0.5 * z;
+      const Vec3 edge[3][2] = {{a, b}, {b, c}, {c, a}};
+      for (const Vec3& q : pos) {
+        for (const auto& e : edge) {
+          const Vec3 d = e[1] - e[0];
+          const float t_on = glm::dot(q - e[0], d) / glm::dot(d, d);
+          const float off = glm::length(glm::cross(d, q - e[0])) / glm::length(d);
+          EXPECT_FALSE(t_on > 1e-4f && t_on < 1.0f - 1e-4f && off < 1e-6f)
+              << "T-junction, seed " << seed;
+        }
+      }
+    }
+    EXPECT_NEAR(area, p.elements[0].area, 1e-5);
+  }
+}
+
+}  // namespace
+}  // namespace rad

@@ -1,0 +1,54 @@
+#include "mesh/subdivide.h"
+
+#include <gtest/gtest.h>
+
+#include "mesh_fixtures.h"
+
+namespace rad {
+namespace {
+
+TEST(Subdivide, SplitsIntoFourChildrenOfAQuarterAreaWithThreeNewMidpoints) {
+  PolygonMesh p = testing::one_polygon();
+  NewMidpoint created[3];
+  ASSERT_EQ(split_element(p, 0, created), 3);
+  EXPECT_EQ(p.vertex_count(), 6u);
+  ASSERT_EQ(p.elements.size(), 5u);
+  EXPECT_EQ(p.elements[0].first_child, 1);
+  for (int c = 1; c <= 4; ++c) {
+    EXPECT_TRUE(p.elements[c].leaf());
+    EXPECT_FLOAT_EQ(p.elements[c].area, 0.125f);
+  }
+  for (const NewMidpoint& m : created) {
+    EXPECT_EQ(p.position[m.vertex], (p.position[m.a] + p.position[m.b]) * 0.5f);
+  }
+}
+
+TEST(Subdivide, ChildrenKeepTheParentOrientation) {
+  PolygonMesh p = testing::one_polygon();
+  NewMidpoint created[3];
+  split_element(p, 0, created);
+  for (int c = 1; c <= 4; ++c) {
+    const uint32_t* v = p.elements[c].v;
+    const Vec3 n = glm::cross(p.position[v[1]] - p.position[v[0]], p.position[v[2]] - p.position[v[0]]);
+    EXPECT_GT(n.z, 0.0f) << "child " << c;
+  }
+}
+
+TEST(Subdivide, NeighboursShareTheMidpointOfTheirCommonEdge) {
+  PolygonMesh p = testing::one_polygon();
+  NewMidpoint created[3];
+  split_element(p, 0, created);
+  // Child 1 (corner a) and child 4 (middle) share the edge between midpoints ab and ca.
+  EXPECT_EQ(split_element(p, 1, created), 3);
+  EXPECT_EQ(p.vertex_count(), 9u);
+  EXPECT_EQ(split_element(p, 4, created), 2) << "the shared edge's midpoint must be reused";
+  EXPECT_EQ(p.vertex_count(), 11u);
+}
+
+TEST(Subdivide, LongestEdge) {
+  PolygonMesh p = testing::one_polygon({0, 0, 0}, {3, 0, 0}, {0, 4, 0});
+  EXPECT_FLOAT_EQ(longest_edge(p, 0), 5.0f);
+}
+
+}  // namespace
+}  // namespace rad
