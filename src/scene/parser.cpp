@@ -1,0 +1,293 @@
+// Recursive-descent parser for the description grammar of SPEC §2, one function per rule.
+#include "scene/parser.h"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+
+#include "scene/off_reader.h"
+#include "scene/text_file.h"
+#include "scene/tokenizer.h"
+
+namespace rad {
+
+namespace {
+
+constexpr std::array<std::string_view, 9> kKeywords = {
+    "Object", "Assembly", "Composite", "Pure", "Reflectivity", "Color", "Emission", "File", "Data"};
+constexpr std::array<const char*, 3> kChannels = {"red", "green", "blue"};
+
+bool is_keyword(std::string_view word) {
+  return std::find(kKeywords.begin(), kKeywords.end(), word) != kKeywords.end();
+}
+
+// The keyword `word` would be if keywords were not case-sensitive, or "".
+std::string_view keyword_ignoring_case(std::string_view word) {
+  for (std::string_view k : kKeywords) {
+    if (k.size() == word.size() && std::equal(k.begin(), k.end(), word.begin(), [](char a, char b) {
+          return std::tolower(static_cast<unsigned char>(a)) ==
+                 std::tolower(static_cast<unsigned char>(b));
+        })) {
+      return k;
+    }
+  }
+  return {};
+}
+
+bool is_symbol(const Token& t, char c) {
+  return t.kind == TokenKind::Symbol && t.text.size() == 1 && t.text[0] == c;
+}
+
+bool is_word(const Token& t, std::string_view word) {
+  return t.kind == TokenKind::Word && t.text == word;
+}
+
+std::string fmt_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+class Parser {
+ public:
+  Parser(std::string_view text, const std::string& path) : tokens_(text, path) {
+    scene_.path = path;
+  }
+
+  // Scene ::= String Composition
+  SceneDescription parse_scene() {
+    scene_.name = expect_string("the scene's name (a quoted string)");
+    // Composition ::= Complex Composition | Complex, up to the end of the file.
+    while (true) {
+      const Token& t = tokens_.peek();
+      if (t.kind == TokenKind::End && !scene_.roots.empty()) break;
+      scene_.roots.push_back(parse_object(
+          /*in_composite=*/false, scene_.roots.empty() ? "'Object'" : "'Object' or end of file"));
+    }
+    return std::move(scene_);
+  }
+
+ private:
+  [[noreturn]] void fail_expected(const Token& found, const std::string& expected,
+                                  bool keyword_expected, const std::string& prefix = "") {
+    if (found.kind == TokenKind::End) {
+      throw Error(found.loc, prefix + "unexpected end of file: expected " + expected);
+    }
+    if (keyword_expected && found.kind == TokenKind::Word && !is_keyword(found.text) &&
+        parse_number(found.text).status == NumberParse::NotANumber) {
+      std::string message = prefix + "unknown keyword '" + found.text + "': expected " + expected;
+      std::string_view hint = keyword_ignoring_case(found.text);
+      if (!hint.empty()) {
+        message += " (keywords are case-sensitive: '" + std::string(hint) + "')";
+      }
+      throw Error(found.loc, message);
+    }
+    throw Error(found.loc, prefix + "expected " + expected + " but found " + describe(found));
+  }
+
+  Token expect_keyword(std::string_view keyword) {
+    Token t = tokens_.next();
+    if (!is_word(t, keyword)) fail_expected(t, "'" + std::string(keyword) + "'", true);
+    return t;
+  }
+
+  Token expect_symbol(char c, const std::string& context = "") {
+    Token t = tokens_.next();
+    if (!is_symbol(t, c)) fail_expected(t, std::string("'") + c + "'" + context, false);
+    return t;
+  }
+
+  std::string expect_string(const std::string& what) {
+    Token t = tokens_.next();
+    if (t.kind != TokenKind::String) fail_expected(t, what, false);
+    return t.text;
+  }
+
+  // Real, finite. `where` receives the token (for later validation messages).
+  double expect_number(const std::string& what, Token& where) {
+    where = tokens_.next();
+    if (where.kind != TokenKind::Word) fail_expected(where, what, false);
+    NumberParse n = parse_number(where.text);
+    if (n.status == NumberParse::NonFinite) {
+      throw Error(where.loc, "non-finite number '" + where.text + "': expected " + what);
+    }
+    if (n.status == NumberParse::NotANumber) fail_expected(where, what, false);
+    return n.value;
+  }
+
+  // Vector ::= "<" Real Real Real ">"
+  DVec3 expect_vector(const std::string& what, std::array<Token, 3>& where) {
+    Token open = tokens_.next();
+    if (!is_symbol(open, '<')) fail_expected(open, "'<' starting " + what, false);
+    DVec3 v;
+    for (int k = 0; k < 3; ++k) v[k] = expect_number("a number", where[k]);
+    expect_symbol('>', " closing " + what);
+    return v;
+  }
+
+  // Complex ::= "Object" String (Assembly | Composite | Pure); Simple when in a Composite.
+  int32_t parse_object(bool in_composite, const std::string& expected) {
+    Token object = tokens_.next();
+    if (!is_word(object, "Object")) fail_expected(object, expected, true);
+    std::string name = expect_string("the object's name (a quoted string)");
+    Token kind = tokens_.next();
+    ObjectKind k;
+    if (is_word(kind, "Assembly")) {
+      k = ObjectKind::Assembly;
+    } else if (is_word(kind, "Composite")) {
+      k = ObjectKind::Composite;
+    } else if (is_word(kind, "Pure")) {
+      k = ObjectKind::Pure;
+    } else {
+      fail_expected(kind, in_composite ? "'Pure'" : "'Assembly', 'Composite' or 'Pure'", true);
+    }
+    if (in_composite && k != ObjectKind::Pure) {
+      throw Error(kind.loc, "a Composite holds only Pures, but \"" + name + "\" is " +
+                                (k == ObjectKind::Assembly ? "an Assembly" : "a Composite"));
+    }
+    auto id = static_cast<int32_t>(scene_.objects.size());
+    ObjectDescription d;
+    d.name = name;
+    d.kind = k;
+    d.loc = object.loc;
+    scene_.objects.push_back(std::move(d));
+    switch (k) {
+      case ObjectKind::Assembly:
+        parse_group(id, /*pures_only=*/false);
+        break;
+      case ObjectKind::Composite:
+        parse_group(id, /*pures_only=*/true);
+        break;
+      case ObjectKind::Pure:
+        parse_pure(id);
+        break;
+    }
+    return id;
+  }
+
+  // Assembly ::= "Assembly" "{" Composition "}";  Composite ::= "Composite" "{" Objects "}"
+  void parse_group(int32_t id, bool pures_only) {
+    expect_symbol('{');
+    std::vector<int32_t> children;
+    while (true) {
+      const Token& t = tokens_.peek();
+      if (is_symbol(t, '}')) {
+        if (children.empty()) {
+          const ObjectDescription& d = scene_.objects[id];
+          fail_expected(t, "'Object'", false,
+                        "empty " + std::string(to_string(d.kind)) + " \"" + d.name + "\": ");
+        }
+        tokens_.next();
+        break;
+      }
+      children.push_back(
+          parse_object(pures_only, children.empty() ? "'Object'" : "'Object' or '}'"));
+    }
+    scene_.objects[id].children = std::move(children);
+  }
+
+  // Pure ::= "Pure" "{" Characteristics Geometry "}"
+  // Characteristics ::= "Reflectivity" Real "Color" Vector "Emission" Real
+  void parse_pure(int32_t id) {
+    expect_symbol('{');
+    expect_keyword("Reflectivity");
+    Token r_token;
+    double reflectivity = expect_number("the reflectivity (a number)", r_token);
+    if (reflectivity < 0.0) {
+      throw Error(r_token.loc, "negative reflectivity " + r_token.text);
+    }
+    expect_keyword("Color");
+    std::array<Token, 3> c_tokens;
+    DVec3 color = expect_vector("the colour", c_tokens);
+    for (int k = 0; k < 3; ++k) {
+      if (color[k] < 0.0) {
+        throw Error(c_tokens[k].loc, std::string("negative ") + kChannels[k] +
+                                         " colour component " + c_tokens[k].text);
+      }
+      double rho = reflectivity * color[k];
+      if (rho > 1.0) {
+        throw Error(c_tokens[k].loc, std::string("reflectance ") + fmt_number(rho) +
+                                         " (Reflectivity " + r_token.text + " x Color " +
+                                         c_tokens[k].text + ") of the " + kChannels[k] +
+                                         " channel is outside [0, 1]");
+      }
+    }
+    expect_keyword("Emission");
+    Token e_token;
+    double emission = expect_number("the emission (a number)", e_token);
+    if (emission < 0.0) throw Error(e_token.loc, "negative emission " + e_token.text);
+
+    Material& m = scene_.objects[id].material;
+    m.reflectance = Vec3(reflectivity * color);
+    m.emission = Vec3(emission * color);
+    parse_geometry(scene_.objects[id]);
+    expect_symbol('}', " closing the Pure");
+  }
+
+  // Geometry ::= "File" FileName | "Data" "{" Polys "}"
+  void parse_geometry(ObjectDescription& pure) {
+    Token g = tokens_.next();
+    if (is_word(g, "File")) {
+      Token file = tokens_.next();
+      if ((file.kind != TokenKind::Word && file.kind != TokenKind::String) || file.text.empty()) {
+        fail_expected(file, "a file name", false);
+      }
+      namespace fs = std::filesystem;
+      fs::path full = (fs::path(scene_.path).parent_path() / file.text).lexically_normal();
+      OffTriangles off = read_off_file(full.string(), file.loc);
+      pure.triangles = std::move(off.triangles);
+      pure.triangle_locs = std::move(off.triangle_locs);
+    } else if (is_word(g, "Data")) {
+      parse_data(pure);
+    } else {
+      fail_expected(g, "'File' or 'Data'", true);
+    }
+  }
+
+  // Polys ::= Poly Polys | Poly;  Poly ::= Vector Vector Vector
+  void parse_data(ObjectDescription& pure) {
+    expect_symbol('{');
+    while (true) {
+      const Token& t = tokens_.peek();
+      if (is_symbol(t, '}')) {
+        if (pure.triangles.empty()) {
+          fail_expected(t, "'<'", false, "empty Data in \"" + pure.name + "\": ");
+        }
+        tokens_.next();
+        return;
+      }
+      SourceLoc loc = t.loc;
+      std::array<Vec3, 3> triangle;
+      std::array<Token, 3> ignored;
+      for (int corner = 0; corner < 3; ++corner) {
+        const Token& p = tokens_.peek();
+        if (corner > 0 && is_symbol(p, '}')) {
+          throw Error(p.loc,
+                      "expected '<' but found '}': a triangle needs 3 corners, this one has " +
+                          std::to_string(corner));
+        }
+        triangle[corner] = Vec3(expect_vector(corner == 0 ? "a triangle" : "a corner", ignored));
+      }
+      pure.triangles.push_back(triangle);
+      pure.triangle_locs.push_back(std::move(loc));
+    }
+  }
+
+  Tokenizer tokens_;
+  SceneDescription scene_;
+};
+
+}  // namespace
+
+SceneDescription parse_scene_text(std::string_view text, const std::string& path) {
+  return Parser(text, path).parse_scene();
+}
+
+SceneDescription parse_scene_file(const std::string& path) {
+  std::string text = read_text_file(path, SourceLoc{path});
+  return parse_scene_text(text, path);
+}
+
+}  // namespace rad
