@@ -1,0 +1,138 @@
+// The object hierarchy built from a parsed description: depth-first triangle ranges, boxes,
+// normals and areas, degenerate triangles, materials.
+#include "hierarchy/hierarchy.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "scene/parser.h"
+
+namespace rad {
+namespace {
+
+Hierarchy build(const std::string& text) {
+  return build_hierarchy(parse_scene_text(text, "scene.des"));
+}
+
+const char* kNested = R"("nested"
+Object "room" Assembly {
+  Object "floor" Pure { Reflectivity 0.5 Color <1 0.5 0.2> Emission 0
+    Data { <0 0 0> <0 0 4> <4 0 0>   <4 0 0> <0 0 4> <4 0 4> } }
+  Object "table" Composite {
+    Object "top" Pure { Reflectivity 0.8 Color <1 1 1> Emission 0
+      Data { <1 1 1> <1 1 2> <2 1 1> } }
+    Object "leg" Pure { Reflectivity 0.8 Color <1 1 1> Emission 0
+      Data { <1 0 1> <1 1 1> <1.1 0 1> } }
+  }
+}
+Object "lamp" Pure { Reflectivity 0 Color <1 0.9 0.8> Emission 10
+  Data { <1 3 1> <2 3 1> <1 3 2> } }
+)";
+
+TEST(Hierarchy, KeepsObjectsAndKindsInDepthFirstOrder) {
+  Hierarchy h = build(kNested);
+  ASSERT_EQ(h.objects.size(), 6u);
+  EXPECT_EQ(h.scene_name, "nested");
+  EXPECT_EQ(h.source_path, "scene.des");
+  EXPECT_EQ(h.roots, (std::vector<int32_t>{0, 5}));
+  EXPECT_EQ(h.objects[0].kind, ObjectKind::Assembly);
+  EXPECT_EQ(h.objects[0].children, (std::vector<int32_t>{1, 2}));
+  EXPECT_EQ(h.objects[2].kind, ObjectKind::Composite);
+  EXPECT_EQ(h.objects[2].children, (std::vector<int32_t>{3, 4}));
+  EXPECT_EQ(h.objects[3].parent, 2);
+  EXPECT_EQ(h.objects[2].parent, 0);
+  EXPECT_EQ(h.objects[0].parent, -1);
+  EXPECT_EQ(h.objects[5].name, "lamp");
+  EXPECT_EQ(h.objects[5].loc.line, 12);
+}
+
+TEST(Hierarchy, GivesEverySubtreeAContiguousTriangleRange) {
+  Hierarchy h = build(kNested);
+  ASSERT_EQ(h.triangles.size(), 5u);
+  auto range = [&](int i) {
+    return std::pair(h.objects[i].first_triangle, h.objects[i].triangle_count);
+  };
+  EXPECT_EQ(range(0), std::pair(0u, 4u));  // room
+  EXPECT_EQ(range(1), std::pair(0u, 2u));  // floor
+  EXPECT_EQ(range(2), std::pair(2u, 2u));  // table
+  EXPECT_EQ(range(3), std::pair(2u, 1u));  // top
+  EXPECT_EQ(range(4), std::pair(3u, 1u));  // leg
+  EXPECT_EQ(range(5), std::pair(4u, 1u));  // lamp
+  for (size_t o = 0; o < h.objects.size(); ++o) {
+    const SceneObject& obj = h.objects[o];
+    for (uint32_t t = obj.first_triangle; t < obj.first_triangle + obj.triangle_count; ++t) {
+      // The owning Pure is this object or below it.
+      int32_t owner = h.triangles.object[t];
+      while (owner != -1 && owner != static_cast<int32_t>(o)) owner = h.objects[owner].parent;
+      EXPECT_EQ(owner, static_cast<int32_t>(o)) << "triangle " << t << " object " << o;
+    }
+  }
+}
+
+TEST(Hierarchy, ComputesBoxesOfEveryObjectAndTheScene) {
+  Hierarchy h = build(kNested);
+  EXPECT_EQ(h.objects[1].box.lo, Vec3(0, 0, 0));
+  EXPECT_EQ(h.objects[1].box.hi, Vec3(4, 0, 4));
+  EXPECT_EQ(h.objects[2].box.lo, Vec3(1, 0, 1));
+  EXPECT_EQ(h.objects[2].box.hi, Vec3(2, 1, 2));
+  EXPECT_EQ(h.objects[0].box.hi, Vec3(4, 1, 4));
+  EXPECT_EQ(h.bounds.lo, Vec3(0, 0, 0));
+  EXPECT_EQ(h.bounds.hi, Vec3(4, 3, 4));
+}
+
+TEST(Hierarchy, ComputesUnitNormalsByTheRightHandRuleAndAreas) {
+  Hierarchy h = build(kNested);
+  // floor: (b-a)x(c-a) = (0,0,4)x(4,0,0) = (0,16,0): up, area 8.
+  EXPECT_EQ(h.triangles.normal[0], Vec3(0, 1, 0));
+  EXPECT_FLOAT_EQ(h.triangles.area[0], 8.0f);
+  EXPECT_EQ(h.triangles.normal[1], Vec3(0, 1, 0));
+  // lamp: (1,0,0)x(0,0,1) = (0,-1,0): down, area 0.5.
+  EXPECT_EQ(h.triangles.normal[4], Vec3(0, -1, 0));
+  EXPECT_FLOAT_EQ(h.triangles.area[4], 0.5f);
+  EXPECT_EQ(h.triangles.corners[4][1], Vec3(2, 3, 1));
+  EXPECT_EQ(h.triangles.object[4], 5);
+}
+
+TEST(Hierarchy, CarriesMaterialProductsToPures) {
+  Hierarchy h = build(kNested);
+  EXPECT_FLOAT_EQ(h.objects[1].material.reflectance.g, 0.25f);
+  EXPECT_FLOAT_EQ(h.objects[1].material.reflectance.b, 0.1f);
+  EXPECT_FLOAT_EQ(h.objects[5].material.emission.r, 10.0f);
+  EXPECT_FLOAT_EQ(h.objects[5].material.emission.b, 8.0f);
+  EXPECT_EQ(h.objects[5].material.reflectance, Vec3(0.0f));
+}
+
+TEST(Hierarchy, DropsAndCountsDegenerateTriangles) {
+  Hierarchy h = build(R"("d" Object "w" Pure { Reflectivity 0.5 Color <1 1 1> Emission 0 Data {
+      <0 0 0> <1 0 0> <2 0 0>
+      <0 0 0> <1 0 0> <0 1 0>
+      <5 5 5> <5 5 5> <5 5 5> } })");
+  EXPECT_EQ(h.triangles.size(), 1u);
+  EXPECT_EQ(h.dropped_degenerate, 2u);
+  EXPECT_EQ(h.objects[0].triangle_count, 1u);
+  EXPECT_EQ(h.objects[0].box.hi, Vec3(1, 1, 0));  // dropped corners do not grow the box
+}
+
+TEST(Hierarchy, RejectsPureWhoseTrianglesAreAllDegenerate) {
+  try {
+    build(
+        "\"d\"\nObject \"w\" Pure { Reflectivity 0.5 Color <1 1 1> Emission 0 Data {"
+        " <0 0 0> <1 0 0> <2 0 0> } }");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.loc().line, 2);
+    EXPECT_EQ(e.loc().column, 1);
+    EXPECT_NE(e.message().find("no triangles of non-zero area"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Hierarchy, SummarizesKindsTrianglesEmittersAndBounds) {
+  std::string s = summarize(build(kNested));
+  EXPECT_NE(s.find("1 Assemblies, 1 Composites, 4 Pures"), std::string::npos) << s;
+  EXPECT_NE(s.find("Triangles: 5"), std::string::npos) << s;
+  EXPECT_NE(s.find("Emitters: 1 Pures, 1 triangles"), std::string::npos) << s;
+}
+
+}  // namespace
+}  // namespace rad
