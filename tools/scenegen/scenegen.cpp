@@ -271,8 +271,11 @@ SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess
   const float w = 5.0f, h = 3.0f, door = 1.0f, door_h = 2.1f;
   const Vec3 X(1, 0, 0), Y(0, 1, 0), Z(0, 0, 1);
   int serial = 0;
-  std::vector<int32_t> floors;
+  // building → one Assembly per row of rooms → rooms: Assemblies group what is near (SPEC §3),
+  // so a ray tests about nx + nz boxes, not nx · nz.
+  std::vector<int32_t> rows;
   for (int i = 0; i < nx; ++i) {
+    std::vector<int32_t> row;
     for (int k = 0; k < nz; ++k) {
       Vec3 o(w * i, 0.0f, w * k);
       Tris shell;
@@ -310,10 +313,11 @@ SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess
       Vec3 cab = o + Vec3(w - 0.7f, 0.0f, rng.uniform(1.5f, 3.0f));
       room.push_back(b.pure(name + ".cabinet", grey(0.4f),
                             box_tris(cab, cab + Vec3(0.6f, 1.8f, 0.8f), 2 * f)));
-      floors.push_back(b.group(ObjectKind::Assembly, name, std::move(room)));
+      row.push_back(b.group(ObjectKind::Assembly, name, std::move(room)));
     }
+    rows.push_back(b.group(ObjectKind::Assembly, fmt::format("row{}", i), std::move(row)));
   }
-  b.root(b.group(ObjectKind::Assembly, "building", std::move(floors)));
+  b.root(b.group(ObjectKind::Assembly, "building", std::move(rows)));
   return b.take();
 }
 

@@ -42,10 +42,11 @@ SceneDescription make_nested_scene(int blocks, int per_block, int tess, uint64_t
 /// radius 0.5 with `stacks` × 2·stacks quads at its centre.
 SceneDescription make_teapot_in_stadium(int stacks);
 
-/// nx × nz rooms of 5 × 3 × 5 m, each an Assembly of a shell Pure (floor, ceiling, walls with door
-/// openings to the neighbours, cut into wall_tess × wall_tess quads per piece), a light, and
-/// furniture Composites (a table, chairs, a cabinet) made of boxes with furniture_tess² quads per
-/// face. About 1600 triangles per room with the defaults (wall_tess 4, furniture_tess 2).
+/// nx × nz rooms of 5 × 3 × 5 m in one Assembly per row, each room an Assembly of a shell Pure
+/// (floor, ceiling, walls with door openings to the neighbours, cut into wall_tess × wall_tess
+/// quads per piece), a light, and furniture Composites (a table, chairs, a cabinet) made of boxes
+/// with furniture_tess² quads per face. About 1600 triangles per room with the defaults (wall_tess
+/// 4, furniture_tess 2).
 SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess, uint64_t seed);
 
 /// Writes the scene as a description file (SPEC §2) with every Pure's triangles in a Data block.
