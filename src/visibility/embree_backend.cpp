@@ -67,8 +67,7 @@ class EmbreeBackend final : public VisibilityBackend {
     scene_ = rtcNewScene(device_);
     check("creating the scene");
     // Measured on this machine (Embree 3.13.5, 100k–1M triangles, vertex → 16 samples): medium
-    // quality with no scene flags traced fastest; ROBUST and COMPACT cost 10–50% on single rays;
-    // HIGH quality builds slower for no gain at these sizes.
+    // quality with no scene flags traced fastest; ROBUST and COMPACT cost 10–50% on single rays.
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
     rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_NONE);
     // One geometry per Pure over the flattened world triangles: as fast as one big mesh, and no
