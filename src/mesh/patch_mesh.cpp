@@ -7,6 +7,7 @@ uint32_t PolygonMesh::add_vertex(const Vec3& p) {
   irradiance.emplace_back(0.0f);
   unshot.emplace_back(0.0f);
   shot.emplace_back(0.0f);
+  major.emplace_back(0.0f);
   return uint32_t(position.size() - 1);
 }
 

@@ -29,6 +29,7 @@ struct PolygonMesh {
   std::vector<Vec3> irradiance;  // H: radiosity gathered from all shots so far; B = E + rho * H
   std::vector<Vec3> unshot;      // radiosity received but not yet shot
   std::vector<Vec3> shot;        // H gathered during the current shot only (for subdivision)
+  std::vector<Vec3> major;       // part of H gathered from the solver's major shots (see solver)
   // Elements, and the midpoint of every split edge (key: the two end vertices, lower first).
   std::vector<Element> elements;
   std::unordered_map<uint64_t, uint32_t> midpoints;

@@ -17,12 +17,13 @@ struct ExactVertex {
 }  // namespace
 
 void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,
-                       const std::vector<uint8_t>& received) {
+                       bool major, const std::vector<uint8_t>& received) {
   const Triangles& tris = s.hierarchy->triangles;
   const size_t np = tris.size();
   const float limit = s.options.subdivision_threshold * s.radiosity_scale;
   const float min_split_edge = 2.0f * s.min_size;  // children must keep edges >= min_size
   const GatherSettings settings = gather_settings(s);
+  const bool all_exact = s.options.midpoints == MidpointRule::Exact;
 
   std::vector<std::vector<uint32_t>> check(np), next(np);
   std::vector<std::vector<ExactVertex>> exact(np);
@@ -57,12 +58,13 @@ void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBa
           ++splits[p];
           for (int k = 0; k < n; ++k) {
             const NewMidpoint& c = created[k];
-            if (exact_edge[index_of(c.a)][index_of(c.b)]) {
+            if (all_exact || exact_edge[index_of(c.a)][index_of(c.b)]) {
               exact[p].push_back({uint32_t(p), c.vertex, c.a, c.b});
             } else {
               m.irradiance[c.vertex] = (m.irradiance[c.a] + m.irradiance[c.b]) * 0.5f;
               m.unshot[c.vertex] = (m.unshot[c.a] + m.unshot[c.b]) * 0.5f;
               m.shot[c.vertex] = (m.shot[c.a] + m.shot[c.b]) * 0.5f;
+              m.major[c.vertex] = (m.major[c.a] + m.major[c.b]) * 0.5f;
               ++interpolated[p];
             }
           }
@@ -80,16 +82,29 @@ void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBa
         const ExactVertex& x = flat[i];
         PolygonMesh& m = s.mesh.polygons[x.polygon];
         const Vec3 rho = s.material_of(x.polygon).reflectance;
-        const Vec3 dh = gather_from_source(m.position[x.vertex], tris.normal[x.polygon],
-                                           polygon_centroid(tris, x.polygon), src, vis,
-                                           settings, sc);
-        const Vec3 earlier_h =
-            (m.irradiance[x.a] - m.shot[x.a] + m.irradiance[x.b] - m.shot[x.b]) * 0.5f;
+        const Vec3 pos = m.position[x.vertex], n = tris.normal[x.polygon];
+        const Vec3 centroid = polygon_centroid(tris, x.polygon);
+        const Vec3 dh = gather_from_source(pos, n, centroid, src, vis, settings, sc);
+        Vec3 major_h(0.0f);
+        for (const ShotSource& k : s.major_shots) {
+          if (k.polygon != int32_t(x.polygon)) {
+            major_h += gather_from_source(pos, n, centroid, k, vis, settings, sc);
+          }
+        }
+        // Earlier minor shots: interpolated from the edge's ends (SPEC §5).
+        Vec3 minor_a = m.irradiance[x.a] - m.shot[x.a] - m.major[x.a];
+        Vec3 minor_b = m.irradiance[x.b] - m.shot[x.b] - m.major[x.b];
+        if (major) {  // the ends' major part includes this shot's
+          minor_a += m.shot[x.a];
+          minor_b += m.shot[x.b];
+        }
+        const Vec3 earlier_h = (minor_a + minor_b) * 0.5f + major_h;
         const Vec3 earlier_u =
             (m.unshot[x.a] - rho * m.shot[x.a] + m.unshot[x.b] - rho * m.shot[x.b]) * 0.5f;
         m.irradiance[x.vertex] = earlier_h + dh;
         m.unshot[x.vertex] = earlier_u + rho * dh;
         m.shot[x.vertex] = dh;
+        m.major[x.vertex] = major ? major_h + dh : major_h;
       }
     });
     s.stats.exact_midpoints += flat.size();

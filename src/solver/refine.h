@@ -20,7 +20,9 @@ inline bool differs(const Vec3& a, const Vec3& b, float limit) {
 /// interpolated and the current shot's part computed exactly (in parallel over all such
 /// vertices); one on an edge within the limit gets the mean of its ends, so an unsplit
 /// neighbour sharing that edge shows no discontinuity.
+/// A new exact vertex also gathers every shot in s.major_shots again, so only the minor shots'
+/// part is interpolated; `major` says whether the current shot is one.
 void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,
-                       const std::vector<uint8_t>& received);
+                       bool major, const std::vector<uint8_t>& received);
 
 }  // namespace rad

@@ -37,7 +37,7 @@ bool cannot_receive(const Triangles& t, size_t p, const ShotSource& src) {
 }  // namespace
 
 void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,
-                        std::vector<uint8_t>& received) {
+                        bool major, std::vector<uint8_t>& received) {
   const Triangles& tris = s.hierarchy->triangles;
   const GatherSettings settings = gather_settings(s);
   received.assign(tris.size(), 0);
@@ -56,6 +56,7 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
           mesh.irradiance[v] += dh;
           mesh.unshot[v] += rho * dh;
           mesh.shot[v] = dh;
+          if (major) mesh.major[v] += dh;
         }
       };
       const size_t nv = mesh.vertex_count();

@@ -19,7 +19,8 @@ Vec3 polygon_centroid(const Triangles& t, size_t p);
 /// other polygon, in parallel over polygons and their vertices (TBB). Each vertex gets
 /// H += dH, unshot += rho * dH and shot = dH. received[p] is set to 1 for polygons that may have
 /// gained (the others' `shot` values are stale). Statistics are summed into s.stats.
+/// With `major`, dH is also added to each vertex's `major` part.
 void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,
-                        std::vector<uint8_t>& received);
+                        bool major, std::vector<uint8_t>& received);
 
 }  // namespace rad

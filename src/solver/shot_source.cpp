@@ -1,6 +1,7 @@
 #include "solver/shot_source.h"
 
 #include "mesh/sample_points.h"
+#include "solver/solver_state.h"
 
 namespace rad {
 

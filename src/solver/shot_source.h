@@ -5,9 +5,10 @@
 #include <vector>
 
 #include "core/math.h"
-#include "solver/solver_state.h"
 
 namespace rad {
+
+struct SolverState;
 
 struct ShotSource {
   int32_t polygon = -1;

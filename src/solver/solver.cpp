@@ -31,12 +31,15 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   const ShotSource src = make_shot_source(s, *shooter, s.sample_barycentrics);
   PolygonMesh& source_mesh = s.mesh.polygons[src_id];
   for (Vec3& u : source_mesh.unshot) u = Vec3(0.0f);
-  s.unshot_energy[src_id] = 0.0;
 
+  const bool major = s.unshot_energy[src_id] >= s.options.major_shot_fraction * s.emitted_energy &&
+                     s.options.major_shot_fraction > 0.0;
+  s.unshot_energy[src_id] = 0.0;
   std::vector<uint8_t> received;
-  shoot_to_receivers(s, src, vis, received);
+  shoot_to_receivers(s, src, vis, major, received);
   const auto t1 = std::chrono::steady_clock::now();
-  refine_after_shot(s, src, vis, received);
+  refine_after_shot(s, src, vis, major, received);
+  if (major) s.major_shots.push_back(src);
 
   // Bookkeeping per received polygon, summed in index order so the result does not depend on
   // the thread count.

@@ -8,6 +8,7 @@
 #include "hierarchy/hierarchy.h"
 #include "mesh/patch_mesh.h"
 #include "solver/options.h"
+#include "solver/shot_source.h"
 #include "visibility/backend.h"
 
 namespace rad {
@@ -48,6 +49,7 @@ struct SolverState {
   float min_size = 0.0f;         // smallest element edge
   float shadow_offset = 0.0f;
   std::vector<Vec3> sample_barycentrics;  // where a source is sampled, in its own barycentrics
+  std::vector<ShotSource> major_shots;    // shots re-gathered by new vertices (see options)
   int64_t shots = 0;
   SolverStats stats;
   std::vector<ShotRecord> history;
