@@ -27,11 +27,16 @@ int run(const rad::CommandLine& cmd) {
   using namespace rad;
   const auto start = Clock::now();
   Progress progress(cmd.quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);
-  auto say = [&](const std::string& s) { progress.message(s); };
+  // Stages go to stdout as the original printed them; the progress bar lives on stderr.
+  auto say = [&](const std::string& s) {
+    if (cmd.quiet) return;
+    std::fputs((s + "\n").c_str(), stdout);
+    std::fflush(stdout);
+  };
   RunTimes times;
   if (!cmd.check) check_mesh_extension(cmd.output);
 
-  say("Reading description file...");
+  if (!cmd.check) say("Reading description file...");
   const SceneDescription scene = parse_scene_file(cmd.scene);
   const Hierarchy hierarchy = build_hierarchy(scene);
   times.parse = since(start);

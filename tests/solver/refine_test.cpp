@@ -1,0 +1,123 @@
+// Subdivision rules of SPEC §5 as the solver applies them after a shot.
+#include "solver/refine.h"
+
+#include <gtest/gtest.h>
+
+#include "mesh/subdivide.h"
+#include "scene_builder.h"
+#include "solver/solver.h"
+
+namespace rad {
+namespace {
+
+struct OneShot {
+  Hierarchy h;
+  std::unique_ptr<VisibilityBackend> vis;
+  SolverState s;
+};
+
+// A lamp low over a corner of the floor: the corners' values differ a lot, so one shot splits
+// the floor deeply. (Centred, it would light the four corners equally and nothing would split:
+// the criterion only sees vertices.)
+std::unique_ptr<OneShot> shoot_lamp_once(SolverOptions o) {
+  auto r = std::make_unique<OneShot>();
+  SceneDescription d;
+  testing::add_quad(d, "floor", {-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, Vec3(0.5f), Vec3(0));
+  testing::add_quad(d, "lamp", {0.7f, 0.7f, 0.3f}, {0.7f, 0.9f, 0.3f}, {0.9f, 0.9f, 0.3f},
+                    {0.9f, 0.7f, 0.3f}, Vec3(0), Vec3(10));
+  r->h = build_hierarchy(d);
+  r->vis = make_visibility_backend(BackendKind::Embree, r->h);
+  o.max_shots = 1;
+  r->s = make_solver_state(r->h, o);
+  solve(r->s, *r->vis);
+  return r;
+}
+
+// The floor polygons' vertices: corners (index < 3) and midpoints, with their edge ends.
+struct Midpoint {
+  size_t polygon;
+  uint32_t vertex, a, b;
+};
+std::vector<Midpoint> floor_midpoints(const OneShot& r) {
+  std::vector<Midpoint> out;
+  for (size_t p = 0; p < 2; ++p) {
+    for (const auto& [key, v] : r.s.mesh.polygons[p].midpoints) {
+      out.push_back({p, v, uint32_t(key >> 32), uint32_t(key & 0xffffffffu)});
+    }
+  }
+  return out;
+}
+
+TEST(Refine, OriginalRuleComputesOnlyMidpointsOfEdgesBeyondTheLimit) {
+  SolverOptions o;
+  o.midpoints = MidpointRule::Interpolate;
+  const auto r = shoot_lamp_once(o);
+  const float limit = o.subdivision_threshold * r->s.radiosity_scale;
+  int computed = 0, interpolated = 0;
+  for (const Midpoint& m : floor_midpoints(*r)) {
+    const PolygonMesh& pm = r->s.mesh.polygons[m.polygon];
+    // Both ends of an edge existed before its midpoint, so their values decided the rule.
+    const Vec3 mean = (pm.irradiance[m.a] + pm.irradiance[m.b]) * 0.5f;
+    const Vec3 ba = r->s.radiosity(m.polygon, m.a), bb = r->s.radiosity(m.polygon, m.b);
+    if (differs(ba, bb, limit)) {
+      ++computed;
+    } else {
+      ++interpolated;
+      EXPECT_EQ(pm.irradiance[m.vertex], mean) << "interpolated midpoint must be the mean";
+    }
+  }
+  EXPECT_GT(computed, 10);
+  EXPECT_GT(interpolated, 10);
+  EXPECT_EQ(uint64_t(computed), r->s.stats.exact_midpoints);
+  EXPECT_EQ(uint64_t(interpolated), r->s.stats.interpolated_midpoints);
+}
+
+TEST(Refine, ExactRuleComputesEveryMidpoint) {
+  const auto r = shoot_lamp_once({});
+  EXPECT_EQ(r->s.stats.interpolated_midpoints, 0u);
+  EXPECT_EQ(r->s.stats.exact_midpoints, floor_midpoints(*r).size());
+  // A computed midpoint under the peak is above the mean of its ends somewhere.
+  int above = 0;
+  for (const Midpoint& m : floor_midpoints(*r)) {
+    const PolygonMesh& pm = r->s.mesh.polygons[m.polygon];
+    above += pm.irradiance[m.vertex].x > 1.001f * 0.5f * (pm.irradiance[m.a].x + pm.irradiance[m.b].x);
+  }
+  EXPECT_GT(above, 0);
+}
+
+TEST(Refine, SharedVerticesAreComputedOnce) {
+  const auto r = shoot_lamp_once({});
+  // The floor's 6 corner vertices gather once in the shot; every midpoint once when created.
+  // The lamp's other triangle is coplanar with the source, so nothing else gathers.
+  size_t vertices = 0;
+  for (size_t p = 0; p < 2; ++p) vertices += r->s.mesh.polygons[p].vertex_count();
+  EXPECT_EQ(r->s.stats.vertex_evaluations + r->s.stats.culled, vertices);
+}
+
+TEST(Refine, LeavesRespectTheMinimumSize) {
+  SolverOptions o;
+  o.min_size = 0.05f;
+  const auto r = shoot_lamp_once(o);
+  size_t leaves = 0;
+  float smallest = 1e30f;
+  for (size_t p = 0; p < 2; ++p) {
+    const PolygonMesh& m = r->s.mesh.polygons[p];
+    for_each_leaf(m, [&](uint32_t e) {
+      ++leaves;
+      smallest = std::min(smallest, longest_edge(m, e));
+    });
+  }
+  EXPECT_GT(leaves, 50u);
+  EXPECT_GE(smallest, o.min_size * 0.999f);
+  EXPECT_LT(smallest, 2 * o.min_size) << "the peak should drive splitting down to the minimum";
+}
+
+TEST(Refine, SplitsStopWhenNeighboursAreWithinTheLimit) {
+  SolverOptions o;
+  o.subdivision_threshold = 1e6f;  // nothing differs by that much
+  const auto r = shoot_lamp_once(o);
+  EXPECT_EQ(r->s.stats.subdivisions, 0u);
+}
+
+}  // namespace
+}  // namespace rad
