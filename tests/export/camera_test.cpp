@@ -1,0 +1,124 @@
+#include "export/camera.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "hierarchy/hierarchy.h"
+#include "scene/parser.h"
+
+namespace rad {
+namespace {
+
+struct Soup {
+  std::vector<Vec3> positions;
+  std::vector<uint32_t> indices;
+};
+
+Soup load_scene(const std::string& name) {
+  const Hierarchy h = build_hierarchy(parse_scene_file(std::string(RAD_SOURCE_DIR) + "/" + name));
+  Soup s;
+  for (const auto& t : h.triangles.corners) {
+    for (const Vec3& p : t) {
+      s.indices.push_back(uint32_t(s.positions.size()));
+      s.positions.push_back(p);
+    }
+  }
+  return s;
+}
+
+/// Horizontal image coordinate in [-1, 1] (left to right) of p seen by c.
+float screen_x(const Camera& c, Vec3 p) {
+  const CameraFrame f = camera_frame(c, 1.0f);
+  const Vec3 d = p - c.eye;
+  return glm::dot(d, f.right) / (glm::dot(d, f.forward) * f.tan_half_x);
+}
+
+TEST(Camera, ParsesEyeTargetAndOptionalFov) {
+  const Camera a = parse_camera("278,273,-800,278,273,0");
+  EXPECT_EQ(a.eye, Vec3(278, 273, -800));
+  EXPECT_EQ(a.target, Vec3(278, 273, 0));
+  EXPECT_FLOAT_EQ(a.fov_y_deg, kDefaultFovDeg);
+  EXPECT_FLOAT_EQ(parse_camera("0,0,0,0,0,1,60.5").fov_y_deg, 60.5f);
+  EXPECT_EQ(parse_camera("-1.5e1,0,0,0,0,1").eye.x, -15.0f);
+}
+
+TEST(Camera, RejectsMalformedSpecs) {
+  EXPECT_THROW(parse_camera(""), Error);
+  EXPECT_THROW(parse_camera("1,2,3,4,5"), Error);
+  EXPECT_THROW(parse_camera("1,2,3,4,5,6,7,8"), Error);
+  EXPECT_THROW(parse_camera("1,2,x,4,5,6"), Error);
+  EXPECT_THROW(parse_camera("1,2,3,,5,6"), Error);
+  EXPECT_THROW(parse_camera("1,2,3,1,2,3"), Error);    // eye == target
+  EXPECT_THROW(parse_camera("0,0,0,0,0,1,0"), Error);  // fov out of range
+  EXPECT_THROW(parse_camera("0,0,0,0,0,1,180"), Error);
+}
+
+TEST(Camera, FrameIsOrthonormalWithPositiveXOnTheLeftLookingAlongZ) {
+  const Camera c = parse_camera("278,273,-800,278,273,0");
+  const CameraFrame f = camera_frame(c, 2.0f);
+  EXPECT_NEAR(glm::dot(f.forward, Vec3(0, 0, 1)), 1.0f, 1e-6f);
+  EXPECT_NEAR(glm::dot(f.up, Vec3(0, 1, 0)), 1.0f, 1e-6f);
+  EXPECT_NEAR(glm::dot(f.right, Vec3(-1, 0, 0)), 1.0f, 1e-6f);
+  EXPECT_NEAR(f.tan_half_y, std::tan(39.3 * M_PI / 360.0), 1e-6);
+  EXPECT_NEAR(f.tan_half_x, 2.0f * f.tan_half_y, 1e-6f);
+  // The Cornell box's red wall (x = 556) is on the left, the green one (x = 0) on the right.
+  EXPECT_LT(screen_x(c, Vec3(550, 274, 300)), -0.3f);
+  EXPECT_GT(screen_x(c, Vec3(5, 274, 300)), 0.3f);
+}
+
+TEST(Camera, LookingStraightDownStillHasAFrame) {
+  const CameraFrame f = camera_frame(parse_camera("0,10,0,0,0,0"), 1.0f);
+  EXPECT_NEAR(glm::length(f.right), 1.0f, 1e-6f);
+  EXPECT_NEAR(glm::dot(f.right, f.forward), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::dot(f.up, f.forward), 0.0f, 1e-6f);
+}
+
+TEST(Camera, DefaultForTheCornellBoxIsThePublishedView) {
+  const Soup s = load_scene("scenes/cornell_box.des");
+  const Camera c = default_camera(s.positions, s.indices, 1.0f);
+  // Published: eye (278, 273, -800), target (278, 273, 0), up +y, fov 39.3.
+  EXPECT_NEAR(c.eye.x, 278.0f, 1.0f);
+  EXPECT_NEAR(c.eye.y, 273.0f, 2.0f);
+  EXPECT_NEAR(c.eye.z, -800.0f, 5.0f);
+  EXPECT_NEAR(c.target.x, 278.0f, 1.0f);
+  EXPECT_NEAR(c.target.y, 273.0f, 2.0f);
+  EXPECT_NEAR(c.target.z, 0.0f, 1.0f);
+  EXPECT_EQ(c.up, Vec3(0, 1, 0));
+  EXPECT_FLOAT_EQ(c.fov_y_deg, 39.3f);
+  EXPECT_LT(screen_x(c, Vec3(550, 274, 300)), 0.0f);  // red wall on the left
+}
+
+TEST(Camera, DefaultForAClosedRoomStandsInsideIt) {
+  const Soup s = load_scene("scenes/furnace_box.des");
+  const Camera c = default_camera(s.positions, s.indices, 1.0f);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_GT(c.eye[k], 0.0f);
+    EXPECT_LT(c.eye[k], 1.0f);
+  }
+  EXPECT_NEAR(c.target.z, 1.0f, 1e-6f);  // looks across at the far wall
+  EXPECT_GT(c.fov_y_deg, 50.0f);         // wide enough to show all of it
+}
+
+TEST(Camera, DefaultPrefersTheOpenSide) {
+  // A box open toward +x only: floor, ceiling and the -x, -z, +z walls.
+  Soup s;
+  auto quad = [&](Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+    const uint32_t n = uint32_t(s.positions.size());
+    s.positions.insert(s.positions.end(), {a, b, c, d});
+    s.indices.insert(s.indices.end(), {n, n + 1, n + 2, n, n + 2, n + 3});
+  };
+  quad({0, 0, 0}, {0, 0, 2}, {2, 0, 2}, {2, 0, 0});
+  quad({0, 1, 0}, {2, 1, 0}, {2, 1, 2}, {0, 1, 2});
+  quad({0, 0, 0}, {0, 1, 0}, {0, 1, 2}, {0, 0, 2});
+  quad({0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0});
+  quad({0, 0, 2}, {0, 1, 2}, {2, 1, 2}, {2, 0, 2});
+  const Camera c = default_camera(s.positions, s.indices, 1.0f);
+  EXPECT_GT(c.eye.x, 2.0f);
+  EXPECT_NEAR(c.eye.z, 1.0f, 1e-5f);
+  EXPECT_NEAR(c.target.x, 2.0f, 1e-5f);
+}
+
+}  // namespace
+}  // namespace rad
