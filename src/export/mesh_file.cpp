@@ -5,6 +5,9 @@
 
 #include "core/error.h"
 #include "export/atomic_file.h"
+#include "export/gltf_writer.h"
+#include "export/obj_writer.h"
+#include "export/off_writer.h"
 #include "export/ply_writer.h"
 
 namespace rad {
@@ -19,15 +22,25 @@ std::string extension(const std::string& path) {
 
 void check_mesh_extension(const std::string& path) {
   const std::string e = extension(path);
-  if (e != ".ply") {
-    throw Error(SourceLoc{path}, "unknown output format '" + e + "' (expected .ply)");
+  if (e != ".ply" && e != ".off" && e != ".obj" && e != ".gltf" && e != ".glb") {
+    throw Error(SourceLoc{path},
+                "unknown output format '" + e + "' (expected .ply, .off, .obj, .gltf or .glb)");
   }
 }
 
 void write_mesh_file(const std::string& path, const OutputMesh& mesh, const MeshFileOptions& o) {
   check_mesh_extension(path);
+  const std::string e = extension(path);
   AtomicFile f(path);
-  write_ply(f.stream(), mesh, o.tone, o.ascii);
+  if (e == ".ply") {
+    write_ply(f.stream(), mesh, o.tone, o.ascii);
+  } else if (e == ".off") {
+    write_off(f.stream(), mesh, o.tone);
+  } else if (e == ".obj") {
+    write_obj(f.stream(), mesh, o.tone);
+  } else {
+    write_gltf(f.stream(), mesh, o.tone, e == ".glb");
+  }
   f.commit();
 }
 

@@ -10,14 +10,16 @@ namespace rad {
 
 struct MeshFileOptions {
   ToneMap tone;
-  bool ascii = false;
+  bool ascii = false;  // PLY only: text instead of binary
 };
 
 /// Throws rad::Error if rad cannot write files with this path's extension (checked before
 /// solving, so a bad name costs nothing).
 void check_mesh_extension(const std::string& path);
 
-/// Writes the mesh atomically: the file appears complete or not at all.
+/// Writes the mesh atomically (the file appears complete or not at all) in the format its
+/// extension names: .ply (write_ply), .off (write_off), .obj (write_obj), .gltf or .glb
+/// (write_gltf).
 void write_mesh_file(const std::string& path, const OutputMesh& mesh, const MeshFileOptions& o);
 
 }  // namespace rad

@@ -1,0 +1,103 @@
+#include "export/gltf_writer.h"
+
+#include <tiny_gltf.h>
+
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+
+namespace rad {
+
+namespace {
+
+/// Appends `bytes` to buffer 0 (4-byte aligned) as a new buffer view; returns its index.
+int add_view(tinygltf::Model& m, const void* bytes, size_t size, int target) {
+  std::vector<unsigned char>& data = m.buffers[0].data;
+  while (data.size() % 4 != 0) data.push_back(0);
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = data.size();
+  view.byteLength = size;
+  view.target = target;
+  const auto* b = static_cast<const unsigned char*>(bytes);
+  data.insert(data.end(), b, b + size);
+  m.bufferViews.push_back(view);
+  return int(m.bufferViews.size() - 1);
+}
+
+/// A float VEC3 vertex attribute accessor over `v`; returns its index.
+int add_vec3(tinygltf::Model& m, const std::vector<Vec3>& v, bool with_bounds) {
+  static_assert(sizeof(Vec3) == 3 * sizeof(float), "Vec3 must be three packed floats");
+  tinygltf::Accessor a;
+  a.bufferView = add_view(m, v.data(), v.size() * sizeof(Vec3), TINYGLTF_TARGET_ARRAY_BUFFER);
+  a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  a.type = TINYGLTF_TYPE_VEC3;
+  a.count = v.size();
+  if (with_bounds) {
+    Vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (const Vec3& p : v) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    a.minValues = {lo.x, lo.y, lo.z};
+    a.maxValues = {hi.x, hi.y, hi.z};
+  }
+  m.accessors.push_back(a);
+  return int(m.accessors.size() - 1);
+}
+
+}  // namespace
+
+void write_gltf(std::ostream& out, const OutputMesh& mesh, const ToneMap& tm, bool binary) {
+  tinygltf::Model m;
+  m.asset.version = "2.0";
+  m.asset.generator = "rad (progressive radiosity)";
+  m.buffers.resize(1);
+  m.scenes.resize(1);
+  m.defaultScene = 0;
+  if (!mesh.indices.empty()) {
+    std::vector<Vec3> colour(mesh.display.size());
+    for (size_t v = 0; v < colour.size(); ++v) colour[v] = tone_map(mesh.display[v], tm);
+
+    tinygltf::Primitive prim;
+    prim.mode = TINYGLTF_MODE_TRIANGLES;
+    prim.attributes["POSITION"] = add_vec3(m, mesh.position, true);
+    prim.attributes["COLOR_0"] = add_vec3(m, colour, false);
+    prim.attributes["_RADIOSITY"] = add_vec3(m, mesh.radiosity, false);
+    tinygltf::Accessor idx;
+    idx.bufferView = add_view(m, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t),
+                              TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    idx.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    idx.type = TINYGLTF_TYPE_SCALAR;
+    idx.count = mesh.indices.size();
+    m.accessors.push_back(idx);
+    prim.indices = int(m.accessors.size() - 1);
+
+    tinygltf::Material mat;
+    mat.name = "radiosity (unlit vertex colours)";
+    mat.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, 1.0};
+    mat.pbrMetallicRoughness.metallicFactor = 0.0;
+    mat.pbrMetallicRoughness.roughnessFactor = 1.0;
+    mat.extensions["KHR_materials_unlit"] = tinygltf::Value(tinygltf::Value::Object());
+    m.materials.push_back(mat);
+    m.extensionsUsed.push_back("KHR_materials_unlit");
+    prim.material = 0;
+
+    tinygltf::Mesh gm;
+    gm.name = "radiosity";
+    gm.primitives.push_back(prim);
+    m.meshes.push_back(gm);
+    tinygltf::Node node;
+    node.name = "radiosity";
+    node.mesh = 0;
+    m.nodes.push_back(node);
+    m.scenes[0].nodes.push_back(0);
+  }
+  if (m.buffers[0].data.empty()) m.buffers.clear();
+  tinygltf::TinyGLTF writer;
+  if (!writer.WriteGltfSceneToStream(&m, out, !binary, binary)) {
+    throw Error("glTF serialisation failed");
+  }
+}
+
+}  // namespace rad

@@ -1,0 +1,19 @@
+// glTF 2.0 output (.gltf with embedded buffer, or binary .glb) for browser and DCC viewers.
+#pragma once
+
+#include <ostream>
+
+#include "export/output_mesh.h"
+#include "export/tonemap.h"
+
+namespace rad {
+
+/// Writes one mesh with one triangle primitive: POSITION (float VEC3, with min/max), indices
+/// (uint32), COLOR_0 (float VEC3: tone_map(display, tm), display-referred but linear, as glTF
+/// vertex colours are), and `_RADIOSITY` (float VEC3: the solver's linear radiosity). Its material
+/// is unlit (KHR_materials_unlit), white, single-sided. Positions are in scene units. `binary`
+/// selects GLB; otherwise JSON with the buffer embedded as a data URI. Throws rad::Error when
+/// serialisation fails.
+void write_gltf(std::ostream& out, const OutputMesh& mesh, const ToneMap& tm, bool binary);
+
+}  // namespace rad
