@@ -1,0 +1,94 @@
+// An independent estimate of radiosity at points of a scene, by Monte Carlo path tracing: the
+// reference rad's solver is measured against (tools/reference, scenes/reference).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "hierarchy/hierarchy.h"
+#include "reference/ray_scene.h"
+#include "reference/reference_point.h"
+#include "reference/rng.h"
+
+namespace rad {
+
+struct TraceOptions {
+  uint64_t seed = 1;
+  /// Sample every point until the standard error of each channel is at most this fraction of
+  /// that channel's mean radiosity over all points (or max_samples is reached).
+  double target_stderr = 0.003;
+  uint64_t pilot_samples = 1024;  // per point, before the mean radiosity is known
+  uint64_t min_batch = 1024;      // smallest number of samples added at a time
+  uint64_t max_samples = uint64_t(1) << 22;
+  int roulette_depth = 3;  // bounces before Russian roulette starts
+};
+
+/// Path tracer over a hierarchy's triangles with rad's model: Lambertian, one-sided (only the
+/// front face, normal (b - a) x (c - a), emits and reflects; back faces are black), emission
+/// E as exitance, radiance of a surface point L = B / pi.
+///
+/// Method: Kajiya 1986 path tracing ("The Rendering Equation", SIGGRAPH 1986), written for
+/// irradiance H(x) = integral of L_in cos(theta) dw over the hemisphere of x:
+///   H(x) = integral of (E(y) + rho(y) H(y)) cos / pi dw,   y = the surface point seen along w.
+/// Each path vertex samples a direction by the cosine (pdf cos / pi), whose estimator is
+/// E(y) + rho(y) H(y), and continues from y with throughput x rho(y). The emission term E(y)
+/// is also estimated by next-event estimation: one point on the emitting triangles, chosen by
+/// power and uniform in area, with a shadow ray. The two estimates of E are combined by
+/// multiple importance sampling with the power heuristic (Veach & Guibas, "Optimally
+/// Combining Sampling Techniques for Monte Carlo Rendering", SIGGRAPH 1995), so emission is
+/// counted once and the variance stays bounded even where emitters meet other surfaces at an
+/// edge (NEE alone has infinite variance there: G ~ 1/r^2). Russian roulette from
+/// `roulette_depth` bounces on, with survival = the hit surface's largest reflectance.
+class PathTracer {
+ public:
+  /// Keeps a pointer to `h`, which must outlive the tracer. Throws rad::Error if Embree fails.
+  explicit PathTracer(const Hierarchy& h, int roulette_depth = 3);
+
+  /// One sample of the irradiance H at point p with front normal n (exitance units: in a
+  /// uniform diffuse environment of radiosity B0, H = B0). Thread-safe; the calling thread
+  /// must hold a FlushDenormals.
+  DVec3 sample_irradiance(const Vec3& p, const Vec3& n, Pcg32& rng) const;
+
+  /// One sample of the radiosity B = E + rho H at a point on triangle `triangle`.
+  DVec3 sample_radiosity(const ReferencePoint& point, Pcg32& rng) const;
+
+  const Material& material(int32_t triangle) const;
+  /// Distance by which ray origins leave their surface (a fraction of the scene's diagonal).
+  float offset() const { return offset_; }
+
+ private:
+  DVec3 direct(const Vec3& p, const Vec3& n, Pcg32& rng) const;
+  /// Solid-angle pdf with which direct() picks the point y of emitting triangle `tri`, seen
+  /// from a point at distance^2 r2 under cosine cos_y at y.
+  double light_pdf(int32_t tri, double r2, double cos_y) const;
+
+  const Hierarchy* h_;
+  RayScene scene_;
+  float offset_;
+  int roulette_depth_;
+  std::vector<int32_t> emitters_;    // triangles with emission
+  std::vector<double> emitter_cdf_;  // by power (area x mean emission), last = 1
+  std::vector<double> area_pdf_;     // per triangle: P(chosen) / area; 0 for non-emitters
+};
+
+/// What estimate_radiosity did.
+struct TraceStats {
+  uint64_t samples = 0;                // paths over all points
+  DVec3 mean_radiosity{0.0};           // per channel, over the points
+  double worst_relative_stderr = 0.0;  // max over points and channels of stderr / channel mean
+  uint64_t points_at_max_samples = 0;
+  double seconds = 0.0;
+};
+
+/// The radiosity at every point, parallel over points (TBB). Point i draws from its own random
+/// stream (seed, i), and how long it is sampled depends only on its own samples and the pilot
+/// mean, so results are identical for any thread count. `progress` (optional) is called with
+/// the number of points finished, from worker threads, serialised.
+std::vector<ReferenceValue> estimate_radiosity(
+    const Hierarchy& h, std::span<const ReferencePoint> points, const TraceOptions& options,
+    TraceStats* stats = nullptr,
+    const std::function<void(size_t done, size_t total)>& progress = {});
+
+}  // namespace rad

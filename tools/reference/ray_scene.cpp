@@ -1,0 +1,106 @@
+#include "reference/ray_scene.h"
+
+#include <embree3/rtcore.h>
+#include <fmt/format.h>
+
+#include <limits>
+
+#include "core/error.h"
+
+namespace rad {
+
+struct RayScene::Impl {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+
+  ~Impl() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+  void check(const char* what) const {
+    const RTCError e = rtcGetDeviceError(device);
+    if (e != RTC_ERROR_NONE) throw Error(fmt::format("Embree error {} while {}", int(e), what));
+  }
+};
+
+RayScene::RayScene(const Triangles& triangles) : impl_(std::make_unique<Impl>()) {
+  FlushDenormals denormals;
+  impl_->device = rtcNewDevice(nullptr);
+  if (!impl_->device) {
+    throw Error(
+        fmt::format("cannot create the Embree device (error {})", int(rtcGetDeviceError(nullptr))));
+  }
+  impl_->scene = rtcNewScene(impl_->device);
+  rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+  rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
+  RTCGeometry g = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  const size_t n = triangles.size();
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+      g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * n));
+  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n));
+  impl_->check("allocating the geometry");
+  for (size_t i = 0; i < n; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& p = triangles.corners[i][size_t(k)];
+      vertices[9 * i + 3 * k + 0] = p.x;
+      vertices[9 * i + 3 * k + 1] = p.y;
+      vertices[9 * i + 3 * k + 2] = p.z;
+      indices[3 * i + size_t(k)] = unsigned(3 * i + size_t(k));
+    }
+  }
+  rtcCommitGeometry(g);
+  rtcAttachGeometry(impl_->scene, g);
+  rtcReleaseGeometry(g);
+  rtcCommitScene(impl_->scene);
+  impl_->check("building the BVH");
+}
+
+RayScene::~RayScene() = default;
+
+namespace {
+// Masks are enabled in this Embree build: mask 0 would hit nothing.
+void fill_ray(RTCRay& ray, const Vec3& origin, const Vec3& dir, float tfar) {
+  ray.org_x = origin.x;
+  ray.org_y = origin.y;
+  ray.org_z = origin.z;
+  ray.tnear = 0.0f;
+  ray.dir_x = dir.x;
+  ray.dir_y = dir.y;
+  ray.dir_z = dir.z;
+  ray.time = 0.0f;
+  ray.tfar = tfar;
+  ray.mask = ~0u;
+  ray.id = 0;
+  ray.flags = 0;
+}
+}  // namespace
+
+RayHit RayScene::intersect(const Vec3& origin, const Vec3& dir, float tfar) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh;
+  fill_ray(rh.ray, origin, dir, tfar);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl_->scene, &context, &rh);
+  RayHit hit;
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
+  hit.triangle = int32_t(rh.hit.primID);
+  hit.t = rh.ray.tfar;
+  hit.u = rh.hit.u;
+  hit.v = rh.hit.v;
+  return hit;
+}
+
+bool RayScene::occluded(const Vec3& origin, const Vec3& dir, float tfar) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray;
+  fill_ray(ray, origin, dir, tfar);
+  rtcOccluded1(impl_->scene, &context, &ray);
+  return ray.tfar == -std::numeric_limits<float>::infinity();
+}
+
+}  // namespace rad

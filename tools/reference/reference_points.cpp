@@ -1,0 +1,54 @@
+#include "reference/reference_points.h"
+
+#include <cmath>
+
+#include "reference/rng.h"
+
+namespace rad {
+
+std::vector<uint32_t> points_per_triangle(const Triangles& t, const PointOptions& o) {
+  double total_area = 0.0;
+  for (float a : t.area) total_area += a;
+  std::vector<uint32_t> n(t.size(), o.min_per_triangle);
+  if (total_area <= 0.0) return n;
+  for (size_t i = 0; i < t.size(); ++i) {
+    const double share = std::round(double(o.total) * t.area[i] / total_area);
+    n[i] = std::max(o.min_per_triangle, uint32_t(share));
+  }
+  return n;
+}
+
+ReferencePoint point_on_triangle(const Triangles& t, int32_t triangle, float u, float v) {
+  const auto& c = t.corners[size_t(triangle)];
+  const DVec3 a(c[0]), b(c[1]), cc(c[2]);
+  ReferencePoint p;
+  p.triangle = triangle;
+  p.u = u;
+  p.v = v;
+  p.position = Vec3(a + double(u) * (b - a) + double(v) * (cc - a));
+  p.normal = t.normal[size_t(triangle)];
+  return p;
+}
+
+std::vector<ReferencePoint> make_reference_points(const Triangles& t, const PointOptions& o) {
+  const std::vector<uint32_t> counts = points_per_triangle(t, o);
+  const double inv_phi = 0.6180339887498949;
+  const double keep = 1.0 - 3.0 * double(o.inset);
+  std::vector<ReferencePoint> points;
+  for (size_t tri = 0; tri < t.size(); ++tri) {
+    Pcg32 rng(o.seed, tri);
+    const double shift = rng.uniform();
+    const uint32_t n = counts[tri];
+    for (uint32_t i = 0; i < n; ++i) {
+      const double r1 = (i + rng.uniform()) / n;
+      const double r2 = std::fmod(shift + i * inv_phi, 1.0);
+      const double s = std::sqrt(r1);
+      const double u = o.inset + keep * s * (1.0 - r2);
+      const double v = o.inset + keep * s * r2;
+      points.push_back(point_on_triangle(t, int32_t(tri), float(u), float(v)));
+    }
+  }
+  return points;
+}
+
+}  // namespace rad

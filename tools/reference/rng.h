@@ -1,0 +1,48 @@
+// Deterministic random numbers for the reference renderer: PCG32 streams seeded by SplitMix64.
+#pragma once
+
+#include <cstdint>
+
+namespace rad {
+
+/// SplitMix64 (Steele, Lea, Flood 2014): one step of a 64-bit mixing sequence. Used to turn a
+/// (seed, index) pair into well-spread generator seeds.
+inline uint64_t splitmix64(uint64_t& state) {
+  uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+/// PCG32 (O'Neill 2014, pcg32 "XSH RR"): a small, fast generator whose stream is fixed by its
+/// seed and stream id, so every reference point draws the same numbers on any thread.
+class Pcg32 {
+ public:
+  /// The generator for item `index` of a run seeded by `seed` (independent streams per index).
+  Pcg32(uint64_t seed, uint64_t index) {
+    uint64_t s = seed ^ (index * 0xD1B54A32D192ED03ull);
+    const uint64_t init = splitmix64(s);
+    inc_ = (splitmix64(s) << 1u) | 1u;
+    state_ = 0;
+    next();
+    state_ += init;
+    next();
+  }
+
+  uint32_t next() {
+    const uint64_t old = state_;
+    state_ = old * 6364136223846793005ull + inc_;
+    const uint32_t xorshifted = uint32_t(((old >> 18u) ^ old) >> 27u);
+    const uint32_t rot = uint32_t(old >> 59u);
+    return (xorshifted >> rot) | (xorshifted << ((-rot) & 31u));
+  }
+
+  /// Uniform in [0, 1), 32 random bits.
+  double uniform() { return double(next()) * 0x1p-32; }
+
+ private:
+  uint64_t state_ = 0;
+  uint64_t inc_ = 1;
+};
+
+}  // namespace rad
