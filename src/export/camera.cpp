@@ -24,7 +24,7 @@ float parse_float(std::string_view s, std::string_view spec) {
   char* end = nullptr;
   const float v = std::strtof(t.c_str(), &end);
   if (t.empty() || end != t.c_str() + t.size() || !std::isfinite(v)) {
-    throw Error("--camera: '" + t + "' is not a number in '" + std::string(spec) + "'");
+    throw Error("'" + t + "' is not a number in '" + std::string(spec) + "'");
   }
   return v;
 }
@@ -56,15 +56,15 @@ Camera parse_camera(std::string_view spec) {
     start = comma + 1;
   }
   if (v.size() != 6 && v.size() != 7) {
-    throw Error("--camera: expected ex,ey,ez,tx,ty,tz[,fov_deg], got '" + std::string(spec) + "'");
+    throw Error("expected ex,ey,ez,tx,ty,tz[,fov_deg], got '" + std::string(spec) + "'");
   }
   Camera c;
   c.eye = Vec3(v[0], v[1], v[2]);
   c.target = Vec3(v[3], v[4], v[5]);
   if (v.size() == 7) c.fov_y_deg = v[6];
-  if (c.eye == c.target) throw Error("--camera: the eye and the target are the same point");
+  if (c.eye == c.target) throw Error("the eye and the target are the same point");
   if (!(c.fov_y_deg > 0.0f && c.fov_y_deg < 180.0f)) {
-    throw Error("--camera: the field of view must be in (0, 180) degrees");
+    throw Error("the field of view must be in (0, 180) degrees");
   }
   return c;
 }

@@ -21,9 +21,11 @@ constexpr int64_t kMaxCoord = int64_t(1) << 29;  // fixed-point coordinates stay
 constexpr float kGuard = 2.0f;  // faces are clipped to twice the view's half-extent
 constexpr int kBandRows = 8;    // pixel rows per band (the unit of parallel work)
 
-/// A vertex in camera space (x right, y up, z = depth along the view) with its colour.
+/// A vertex in camera space (x right, y up, z = depth along the view) with its colour. Double
+/// precision, so vertices on a common line (T-junctions between polygons) stay on it to far below
+/// the fixed-point grid.
 struct ClipVertex {
-  Vec3 q;
+  DVec3 q;
   Vec3 colour;
 };
 
@@ -36,7 +38,7 @@ struct ScreenTri {
   int64_t x_lo, x_hi, y_lo, y_hi;
 };
 
-bool lex_less(const Vec3& a, const Vec3& b) {
+bool lex_less(const DVec3& a, const DVec3& b) {
   if (a.x != b.x) return a.x < b.x;
   if (a.y != b.y) return a.y < b.y;
   return a.z < b.z;
@@ -44,11 +46,11 @@ bool lex_less(const Vec3& a, const Vec3& b) {
 
 class Clipper {
  public:
-  Clipper(float near, float tan_x, float tan_y)
+  Clipper(double near, double tan_x, double tan_y)
       : near_(near), gx_(kGuard * tan_x), gy_(kGuard * tan_y) {}
 
   /// Signed distance of q to clip plane k (>= 0: kept).
-  float distance(int k, const Vec3& q) const {
+  double distance(int k, const DVec3& q) const {
     switch (k) {
       case 0:
         return q.z - near_;
@@ -72,15 +74,15 @@ class Clipper {
       for (int i = 0; i < n; ++i) {
         const ClipVertex& a = poly[size_t(i)];
         const ClipVertex& b = poly[size_t((i + 1) % n)];
-        const float da = distance(k, a.q), db = distance(k, b.q);
-        if (da >= 0.0f) out[size_t(m++)] = a;
-        if ((da >= 0.0f) != (db >= 0.0f)) {
+        const double da = distance(k, a.q), db = distance(k, b.q);
+        if (da >= 0.0) out[size_t(m++)] = a;
+        if ((da >= 0.0) != (db >= 0.0)) {
           const bool swap = lex_less(b.q, a.q);
           const ClipVertex& s = swap ? b : a;
           const ClipVertex& e = swap ? a : b;
-          const float ds = swap ? db : da, de = swap ? da : db;
-          const float t = ds / (ds - de);
-          out[size_t(m++)] = {s.q + t * (e.q - s.q), s.colour + t * (e.colour - s.colour)};
+          const double ds = swap ? db : da, de = swap ? da : db;
+          const double t = ds / (ds - de);
+          out[size_t(m++)] = {s.q + t * (e.q - s.q), s.colour + float(t) * (e.colour - s.colour)};
         }
       }
       n = m;
@@ -90,7 +92,7 @@ class Clipper {
   }
 
  private:
-  float near_, gx_, gy_;
+  double near_, gx_, gy_;
 };
 
 int64_t floor_div(int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
@@ -124,10 +126,10 @@ class Rasterizer {
     std::array<float, 9> iz;
     const double unit = 2.0 * double(half_step_) * o_.samples;  // fixed-point units per pixel
     for (int i = 0; i < n; ++i) {
-      const Vec3& q = poly[size_t(i)].q;
-      iz[size_t(i)] = 1.0f / q.z;
-      const double px = (0.5 + 0.5 * double(q.x) / (double(q.z) * f.tan_half_x)) * o_.width;
-      const double py = (0.5 - 0.5 * double(q.y) / (double(q.z) * f.tan_half_y)) * o_.height;
+      const DVec3& q = poly[size_t(i)].q;
+      iz[size_t(i)] = float(1.0 / q.z);
+      const double px = (0.5 + 0.5 * q.x / (q.z * f.tan_half_x)) * o_.width;
+      const double py = (0.5 - 0.5 * q.y / (q.z * f.tan_half_y)) * o_.height;
       x[size_t(i)] = std::llround(px * unit);
       y[size_t(i)] = std::llround(py * unit);
     }
@@ -245,14 +247,15 @@ Image render_image(std::span<const Vec3> positions, std::span<const Vec3> colour
     throw Error("subsamples per pixel axis must be 1 to " + std::to_string(kMaxSamples));
   }
   const CameraFrame f = camera_frame(camera, float(o.width) / float(o.height));
-  std::vector<Vec3> q(positions.size());
-  float far = 0.0f;
+  const DVec3 right(f.right), up(f.up), forward(f.forward), eye(camera.eye);
+  std::vector<DVec3> q(positions.size());
+  double far = 0.0;
   for (size_t v = 0; v < positions.size(); ++v) {
-    const Vec3 d = positions[v] - camera.eye;
-    q[v] = Vec3(glm::dot(d, f.right), glm::dot(d, f.up), glm::dot(d, f.forward));
+    const DVec3 d = DVec3(positions[v]) - eye;
+    q[v] = DVec3(glm::dot(d, right), glm::dot(d, up), glm::dot(d, forward));
     far = std::max(far, q[v].z);
   }
-  const Clipper clipper(std::max(far * 1e-5f, 1e-30f), f.tan_half_x, f.tan_half_y);
+  const Clipper clipper(std::max(far * 1e-5, 1e-30), f.tan_half_x, f.tan_half_y);
   Rasterizer raster(o);
   std::array<ClipVertex, 9> poly;
   for (size_t i = 0; i + 2 < indices.size(); i += 3) {
@@ -263,7 +266,7 @@ Image render_image(std::span<const Vec3> positions, std::span<const Vec3> colour
     bool all_in = true, all_out = false;
     for (int k = 0; k < 5 && !all_out; ++k) {
       int outside = 0;
-      for (uint32_t j : v) outside += clipper.distance(k, q[j]) < 0.0f;
+      for (uint32_t j : v) outside += clipper.distance(k, q[j]) < 0.0;
       all_in = all_in && outside == 0;
       all_out = outside == 3;
     }
