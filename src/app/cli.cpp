@@ -3,7 +3,10 @@
 #include <CLI/CLI.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <iostream>
+
+#include "core/error.h"
 
 namespace rad {
 
@@ -28,7 +31,7 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
       "  rad --check SCENE.des                   parse, validate and summarise only\n",
       "rad"};
   app.add_option("scene", c.scene, "Scene description file")->required();
-  app.add_option("output", c.output, "Output mesh (.ply)");
+  app.add_option("output", c.output, "Output mesh (.ply, .off, .obj, .gltf or .glb)");
   app.add_flag("--check", c.check, "Parse and validate the scene, print a summary, do not solve");
   app.add_option("--backend", backend, "Shadow-ray backend: embree, grid or brute")
       ->capture_default_str();
@@ -64,12 +67,31 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
       ->capture_default_str();
   app.add_option("--exposure", c.exposure, "Stops added to the automatic exposure")
       ->capture_default_str();
+  std::string camera, size = "800x800";
+  app.add_option("--image", c.images,
+                 "Render the solved scene to this image: .png (tone-mapped sRGB) or linear "
+                 ".hdr, .exr, .pfm (repeatable)");
+  app.add_option("--camera", camera,
+                 "Image camera eye_x,eye_y,eye_z,target_x,target_y,target_z[,fov_deg], up +y "
+                 "(default: frames the scene from its open side; fov 39.3)");
+  app.add_option("--size", size, "Image size WxH in pixels")->capture_default_str();
   app.add_option("--stats-json", c.stats_json, "Write run statistics as JSON to this file");
   app.add_flag("-q,--quiet", c.quiet, "Print errors only");
   try {
     app.parse(args);
     c.backend = parse_backend_kind(backend);
     c.tonemap = parse_tone_curve(tonemap);
+    try {
+      if (!camera.empty()) c.camera = parse_camera(camera);
+    } catch (const Error& e) {
+      throw CLI::ValidationError("--camera", e.what());
+    }
+    char x = 0, end = 0;
+    if (std::sscanf(size.c_str(), "%d%c%d%c", &c.image_width, &x, &c.image_height, &end) != 3 ||
+        x != 'x' || c.image_width < 1 || c.image_height < 1 || c.image_width > 16384 ||
+        c.image_height > 16384) {
+      throw CLI::ValidationError("--size", "expected WxH in pixels (1 to 16384), got " + size);
+    }
     if (method == "analytic") {
       c.solver.method = FormFactorMethod::Analytic;
     } else if (method == "samples") {

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "export/camera.h"
 #include "export/tonemap.h"
 #include "solver/options.h"
 #include "visibility/backend.h"
@@ -23,6 +24,9 @@ struct CommandLine {
   bool ambient = true;
   ToneCurve tonemap = ToneCurve::Clamp;
   float exposure = 0.0f;    // stops added to the automatic exposure
+  std::vector<std::string> images;  // --image, repeatable: .png, .hdr, .exr or .pfm
+  std::optional<Camera> camera;     // --camera; none: default_camera frames the scene
+  int image_width = 800, image_height = 800;  // --size WxH
   std::string stats_json;
   bool quiet = false;
 };

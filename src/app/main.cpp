@@ -11,6 +11,9 @@
 #include "app/report.h"
 #include "core/error.h"
 #include "core/progress.h"
+#include "export/exposure.h"
+#include "export/image_file.h"
+#include "export/image_render.h"
 #include "export/mesh_file.h"
 #include "export/output_mesh.h"
 #include "hierarchy/hierarchy.h"
@@ -35,6 +38,7 @@ int run(const rad::CommandLine& cmd) {
   };
   RunTimes times;
   if (!cmd.check) check_mesh_extension(cmd.output);
+  for (const std::string& image : cmd.images) check_image_extension(image);
 
   if (!cmd.check) say("Reading description file...");
   const SceneDescription scene = parse_scene_file(cmd.scene);
@@ -72,11 +76,19 @@ int run(const rad::CommandLine& cmd) {
   const OutputMesh mesh = make_output_mesh(state, cmd.ambient);
   MeshFileOptions mo;
   mo.ascii = cmd.ascii;
-  mo.tone.curve = cmd.tonemap;
-  float brightest_emitter = 0.0f;
-  for (const Material& m : state.materials) brightest_emitter = std::max(brightest_emitter, max_component(m.emission));
-  mo.tone.scale = auto_exposure(mesh.display, brightest_emitter > 0 ? brightest_emitter * 0.5f : 1e30f, cmd.exposure);
+  mo.tone = scene_tone_map(state, mesh, cmd.tonemap, cmd.exposure);
   write_mesh_file(cmd.output, mesh, mo);
+  if (!cmd.images.empty()) {
+    const RenderOptions ro{cmd.image_width, cmd.image_height};
+    const Camera camera = cmd.camera ? *cmd.camera
+                                     : default_camera(mesh.position, mesh.indices,
+                                                      float(ro.width) / float(ro.height));
+    const Image image = render_image(mesh.position, mesh.display, mesh.indices, camera, ro);
+    for (const std::string& path : cmd.images) {
+      say(fmt::format("Writing image {}", path));
+      write_image_file(path, image, mo.tone);
+    }
+  }
   times.write = since(t);
   times.total = since(start);
   if (!cmd.stats_json.empty()) write_stats_json(cmd.stats_json, cmd, state, stop, times);
