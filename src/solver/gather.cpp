@@ -57,7 +57,7 @@ Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroi
   }
   unoccluded *= scale;
   if (!st.shadows) return unoccluded;
-  if (max_component(unoccluded) < st.cut) {
+  if (max_component(glm::abs(unoccluded)) < st.cut) {  // |.|: edits shoot negative energy
     scratch.stats.intensity_cuts += scratch.active.size();
     return unoccluded;
   }

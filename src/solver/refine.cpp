@@ -16,14 +16,35 @@ struct ExactVertex {
 
 }  // namespace
 
+Vec3 regather_shots(const SolverState& s, const Vec3& x, uint32_t polygon, bool major_only,
+                    const VisibilityBackend& vis, const GatherSettings& settings,
+                    GatherScratch& scratch, Vec3* major_part) {
+  const Triangles& tris = s.hierarchy->triangles;
+  const Vec3 n = tris.normal[polygon], centroid = polygon_centroid(tris, polygon);
+  Vec3 all(0.0f), major(0.0f);
+  for (const ShotSource& k : s.shot_log) {
+    if (k.polygon == int32_t(polygon) || (major_only && !k.major)) continue;
+    const Vec3 g = gather_from_source(x, n, centroid, k, vis, settings, scratch);
+    all += g;
+    if (k.major) major += g;
+  }
+  if (major_part) *major_part = major;
+  return all;
+}
+
 void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,
                        bool major, const std::vector<uint8_t>& received) {
+  refine_polygons(s, &src, major, Vec3(0.0f), vis, received);
+}
+
+void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Vec3& d_rho,
+                     const VisibilityBackend& vis, const std::vector<uint8_t>& received) {
   const Triangles& tris = s.hierarchy->triangles;
   const size_t np = tris.size();
   const float limit = s.options.subdivision_threshold * s.radiosity_scale;
   const float min_split_edge = 2.0f * s.min_size;  // children must keep edges >= min_size
   const GatherSettings settings = gather_settings(s);
-  const bool all_exact = s.options.midpoints == MidpointRule::Exact;
+  const bool all_exact = s.options.midpoints == MidpointRule::Exact || src == nullptr;
 
   std::vector<std::vector<uint32_t>> check(np), next(np);
   std::vector<std::vector<ExactVertex>> exact(np);
@@ -82,15 +103,22 @@ void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBa
         const ExactVertex& x = flat[i];
         PolygonMesh& m = s.mesh.polygons[x.polygon];
         const Vec3 rho = s.material_of(x.polygon).reflectance;
-        const Vec3 pos = m.position[x.vertex], n = tris.normal[x.polygon];
-        const Vec3 centroid = polygon_centroid(tris, x.polygon);
-        const Vec3 dh = gather_from_source(pos, n, centroid, src, vis, settings, sc);
-        Vec3 major_h(0.0f);
-        for (const ShotSource& k : s.major_shots) {
-          if (k.polygon != int32_t(x.polygon)) {
-            major_h += gather_from_source(pos, n, centroid, k, vis, settings, sc);
-          }
+        const Vec3 pos = m.position[x.vertex];
+        if (src == nullptr) {  // between shots: every earlier shot gathered again, exact
+          m.irradiance[x.vertex] =
+              regather_shots(s, pos, x.polygon, false, vis, settings, sc, &m.major[x.vertex]);
+          // Unshot: the edit's part d_rho * H exact, the rest interpolated (transient).
+          m.unshot[x.vertex] = (m.unshot[x.a] - d_rho * m.irradiance[x.a] + m.unshot[x.b] -
+                                d_rho * m.irradiance[x.b]) * 0.5f +
+                               d_rho * m.irradiance[x.vertex];
+          m.shot[x.vertex] = Vec3(0.0f);
+          continue;
         }
+        const Vec3 dh = gather_from_source(pos, tris.normal[x.polygon],
+                                           polygon_centroid(tris, x.polygon), *src, vis,
+                                           settings, sc);
+        Vec3 major_h(0.0f);
+        regather_shots(s, pos, x.polygon, true, vis, settings, sc, &major_h);
         // Earlier minor shots: interpolated from the edge's ends (SPEC §5).
         Vec3 minor_a = m.irradiance[x.a] - m.shot[x.a] - m.major[x.a];
         Vec3 minor_b = m.irradiance[x.b] - m.shot[x.b] - m.major[x.b];

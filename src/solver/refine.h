@@ -20,7 +20,19 @@ inline bool differs(const Vec3& a, const Vec3& b, float limit) {
 /// interpolated and the current shot's part computed exactly (in parallel over all such
 /// vertices); one on an edge within the limit gets the mean of its ends, so an unsplit
 /// neighbour sharing that edge shows no discontinuity.
-/// A new exact vertex also gathers every shot in s.major_shots again, so only the minor shots'
+/// The shots of s.shot_log gathered again at point x of `polygon` (all, or the major ones only);
+/// the major ones' part is also written to *major_part when given.
+Vec3 regather_shots(const SolverState& s, const Vec3& x, uint32_t polygon, bool major_only,
+                    const VisibilityBackend& vis, const GatherSettings& settings,
+                    GatherScratch& scratch, Vec3* major_part);
+
+/// The refinement; with src == nullptr it runs between shots (after an edit changed the
+/// polygons' radiosity): every new vertex gathers every logged shot again, so H is exact, and
+/// its unshot radiosity takes the edit's part d_rho * H exactly.
+void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Vec3& d_rho,
+                     const VisibilityBackend& vis, const std::vector<uint8_t>& which);
+
+/// A new exact vertex also gathers every major shot of s.shot_log again, so only the minor shots'
 /// part is interpolated; `major` says whether the current shot is one.
 void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,
                        bool major, const std::vector<uint8_t>& received);

@@ -19,6 +19,7 @@ struct ShotSource {
   std::vector<Vec3> sample;      // sample points on the source
   std::vector<Vec3> unshot;      // the source's unshot radiosity at each sample
   Vec3 mean_unshot{0.0f};        // area-weighted mean unshot radiosity over the samples
+  bool major = false;            // carried >= major_shot_fraction of the emitted energy
 };
 
 /// Freezes polygon p as the source of the next shot: n = m*m regular samples (SPEC §4), each

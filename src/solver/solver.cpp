@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <chrono>
+#include <cmath>
 
 #include "solver/refine.h"
 #include "solver/shoot.h"
@@ -13,8 +14,8 @@ std::optional<int32_t> choose_shooter(const SolverState& s) {
   int32_t best = -1;
   double best_energy = 0.0;
   for (size_t p = 0; p < s.unshot_energy.size(); ++p) {
-    if (s.unshot_energy[p] > best_energy) {  // strict: ties keep the lowest index
-      best_energy = s.unshot_energy[p];
+    if (std::abs(s.unshot_energy[p]) > best_energy) {  // strict: ties keep the lowest index
+      best_energy = std::abs(s.unshot_energy[p]);
       best = int32_t(p);
     }
   }
@@ -28,18 +29,19 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   if (!shooter) return std::nullopt;
   const size_t src_id = size_t(*shooter);
 
-  const ShotSource src = make_shot_source(s, *shooter, s.sample_barycentrics);
+  ShotSource src = make_shot_source(s, *shooter, s.sample_barycentrics);
   PolygonMesh& source_mesh = s.mesh.polygons[src_id];
   for (Vec3& u : source_mesh.unshot) u = Vec3(0.0f);
 
-  const bool major = s.unshot_energy[src_id] >= s.options.major_shot_fraction * s.emitted_energy &&
-                     s.options.major_shot_fraction > 0.0;
+  src.major = s.options.major_shot_fraction > 0.0 &&
+              std::abs(s.unshot_energy[src_id]) >= s.options.major_shot_fraction * s.emitted_energy;
+  const bool major = src.major;
   s.unshot_energy[src_id] = 0.0;
   std::vector<uint8_t> received;
   shoot_to_receivers(s, src, vis, major, received);
   const auto t1 = std::chrono::steady_clock::now();
   refine_after_shot(s, src, vis, major, received);
-  if (major) s.major_shots.push_back(src);
+  s.shot_log.push_back(std::move(src));
 
   // Bookkeeping per received polygon, summed in index order so the result does not depend on
   // the thread count.

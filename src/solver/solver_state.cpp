@@ -1,5 +1,7 @@
 #include "solver/solver_state.h"
 
+#include <cmath>
+
 #include "mesh/sample_points.h"
 #include "visibility/segment.h"
 
@@ -30,7 +32,7 @@ double polygon_unshot_energy(const PolygonMesh& p) {
 
 double SolverState::unshot_total() const {
   double t = 0.0;
-  for (double e : unshot_energy) t += e;
+  for (double e : unshot_energy) t += std::abs(e);
   return t;
 }
 

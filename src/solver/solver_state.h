@@ -42,6 +42,8 @@ struct SolverState {
   /// Materials per hierarchy object (copied so they can be edited between shots).
   std::vector<Material> materials;
   /// Per polygon: unshot energy (area-integrated mean-channel unshot radiosity), kept current.
+  /// Negative after an edit lowers an emission or a reflectance (Chen 1990): shooter choice and
+  /// convergence use its absolute value.
   std::vector<double> unshot_energy;
   double emitted_energy = 0.0;   // sum of area x mean-channel emission
   double absorbed_energy = 0.0;  // sum over shots of received energy not reflected
@@ -49,7 +51,9 @@ struct SolverState {
   float min_size = 0.0f;         // smallest element edge
   float shadow_offset = 0.0f;
   std::vector<Vec3> sample_barycentrics;  // where a source is sampled, in its own barycentrics
-  std::vector<ShotSource> major_shots;    // shots re-gathered by new vertices (see options)
+  /// Every shot so far, in order. New vertices made by refinement gather the major ones again;
+  /// vertices made by a forced subdivision gather them all, so their radiosity is exact.
+  std::vector<ShotSource> shot_log;
   int64_t shots = 0;
   SolverStats stats;
   std::vector<ShotRecord> history;

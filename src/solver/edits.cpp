@@ -1,0 +1,74 @@
+#include "solver/edits.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <fmt/format.h>
+
+#include "mesh/subdivide.h"
+#include "solver/refine.h"
+#include "solver/shoot.h"
+
+namespace rad {
+
+void set_material(SolverState& s, int32_t object, const Material& m,
+                  const VisibilityBackend& vis) {
+  const Hierarchy& h = *s.hierarchy;
+  if (object < 0 || size_t(object) >= h.objects.size() ||
+      h.objects[size_t(object)].kind != ObjectKind::Pure) {
+    throw Error(fmt::format("object {} is not a Pure", object));
+  }
+  for (int k = 0; k < 3; ++k) {
+    if (!(m.reflectance[k] >= 0.0f && m.reflectance[k] <= 1.0f) || !(m.emission[k] >= 0.0f) ||
+        !std::isfinite(m.emission[k])) {
+      throw Error("reflectance must be in [0, 1] and emission finite and >= 0");
+    }
+  }
+  const SceneObject& o = h.objects[size_t(object)];
+  const Material old = s.materials[size_t(object)];
+  const Vec3 d_e = m.emission - old.emission, d_rho = m.reflectance - old.reflectance;
+  s.materials[size_t(object)] = m;
+  for (uint32_t t = o.first_triangle; t < o.first_triangle + o.triangle_count; ++t) {
+    PolygonMesh& p = s.mesh.polygons[t];
+    for (size_t v = 0; v < p.vertex_count(); ++v) p.unshot[v] += d_e + d_rho * p.irradiance[v];
+    s.emitted_energy += double(h.triangles.area[t]) * double(mean_component(d_e));
+    s.unshot_energy[t] = polygon_unshot_energy(p);
+  }
+  // Where the new radiosity varies beyond the limit (a surface that was black was never
+  // subdivided), refine now, exactly.
+  std::vector<uint8_t> which(s.mesh.polygons.size(), 0);
+  for (uint32_t t = o.first_triangle; t < o.first_triangle + o.triangle_count; ++t) which[t] = 1;
+  refine_polygons(s, nullptr, false, d_rho, vis, which);
+  for (uint32_t t = o.first_triangle; t < o.first_triangle + o.triangle_count; ++t) {
+    s.unshot_energy[t] = polygon_unshot_energy(s.mesh.polygons[t]);
+  }
+}
+
+size_t force_subdivide(SolverState& s, int32_t polygon, const VisibilityBackend& vis) {
+  PolygonMesh& m = s.mesh.polygons[size_t(polygon)];
+  std::vector<uint32_t> leaves;
+  for_each_leaf(m, [&](uint32_t e) { leaves.push_back(e); });
+  std::vector<NewMidpoint> created;
+  for (uint32_t e : leaves) {
+    if (longest_edge(m, e) < 2.0f * s.min_size) continue;
+    NewMidpoint c[3];
+    const int n = split_element(m, e, c);
+    created.insert(created.end(), c, c + n);
+    ++s.stats.subdivisions;
+  }
+  const GatherSettings settings = gather_settings(s);
+  tbb::enumerable_thread_specific<GatherScratch> scratch;
+  tbb::parallel_for(size_t(0), created.size(), [&](size_t i) {
+    const NewMidpoint& c = created[i];
+    m.irradiance[c.vertex] = regather_shots(s, m.position[c.vertex], uint32_t(polygon), false, vis,
+                                            settings, scratch.local(), &m.major[c.vertex]);
+    m.unshot[c.vertex] = (m.unshot[c.a] + m.unshot[c.b]) * 0.5f;  // transient: interpolated
+    m.shot[c.vertex] = Vec3(0.0f);
+  });
+  for (const GatherScratch& sc : scratch) s.stats += sc.stats;
+  s.stats.exact_midpoints += created.size();
+  s.unshot_energy[size_t(polygon)] = polygon_unshot_energy(m);
+  return created.size();
+}
+
+}  // namespace rad

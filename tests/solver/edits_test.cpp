@@ -1,0 +1,151 @@
+// Editing materials and lights between shots continues the same solve to the new answer.
+#include "solver/edits.h"
+#include "solver/gather.h"
+#include "solver/shoot.h"
+
+#include <gtest/gtest.h>
+
+#include "scene_builder.h"
+#include "solver/solver.h"
+
+namespace rad {
+namespace {
+
+// A closed box with a ceiling lamp, a coloured wall, a black (rho = 0) wall and a blocker.
+SceneDescription edit_scene(Vec3 lamp_e, Vec3 left_rho, Vec3 black_rho) {
+  SceneDescription d;
+  const Vec3 w(0.6f, 0.55f, 0.5f);
+  const Vec3 p[8] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                     {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  testing::add_quad(d, "floor", p[0], p[1], p[2], p[3], w, Vec3(0), 1);
+  testing::add_quad(d, "ceiling", p[4], p[7], p[6], p[5], w, Vec3(0), 1);
+  testing::add_quad(d, "front", p[0], p[4], p[5], p[1], w, Vec3(0), 1);
+  testing::add_quad(d, "back", p[3], p[2], p[6], p[7], black_rho, Vec3(0), 1);
+  testing::add_quad(d, "left", p[0], p[3], p[7], p[4], left_rho, Vec3(0), 1);
+  testing::add_quad(d, "right", p[1], p[5], p[6], p[2], w, Vec3(0), 1);
+  testing::add_quad(d, "lamp", {0.4f, 0.4f, 0.99f}, {0.4f, 0.6f, 0.99f}, {0.6f, 0.6f, 0.99f},
+                    {0.6f, 0.4f, 0.99f}, Vec3(0.5f), lamp_e);
+  testing::add_quad(d, "blocker", {0.3f, 0.3f, 0.4f}, {0.7f, 0.3f, 0.4f}, {0.7f, 0.7f, 0.4f},
+                    {0.3f, 0.7f, 0.4f}, w, Vec3(0));
+  return d;
+}
+
+const Vec3 kLamp(5.0f), kLeft(0.6f, 0.3f, 0.2f), kBlack(0.0f);
+
+SolverOptions options() {
+  SolverOptions o;
+  o.converge = 2e-4;
+  o.subdivision_threshold = 0.1f;  // coarser than the default: this compares two solves
+  return o;
+}
+
+int32_t object_named(const Hierarchy& h, const std::string& name) {
+  for (size_t i = 0; i < h.objects.size(); ++i) if (h.objects[i].name == name) return int32_t(i);
+  return -1;
+}
+
+// Worst difference at the polygons' corners (computed exactly in both solves), over the mean.
+double worst_difference(const SolverState& a, const SolverState& b) {
+  double mean = 0, worst = 0;
+  int n = 0;
+  for (size_t p = 0; p < a.mesh.polygons.size(); ++p) {
+    for (uint32_t v = 0; v < 3; ++v) mean += mean_component(b.radiosity(p, v)), ++n;
+  }
+  mean /= n;
+  for (size_t p = 0; p < a.mesh.polygons.size(); ++p) {
+    for (uint32_t v = 0; v < 3; ++v) {
+      worst = std::max(worst, double(max_component(glm::abs(a.radiosity(p, v) - b.radiosity(p, v)))));
+    }
+  }
+  return worst / mean;
+}
+
+// Solves the base scene, applies `edit` to its state, continues; then solves the edited scene
+// from scratch; returns the worst corner difference.
+double edit_then_continue(const std::string& object, const Material& m, Vec3 lamp, Vec3 left,
+                          Vec3 black) {
+  const Hierarchy base_h = build_hierarchy(edit_scene(kLamp, kLeft, kBlack));
+  const auto base_vis = make_visibility_backend(BackendKind::Embree, base_h);
+  SolverState edited = make_solver_state(base_h, options());
+  solve(edited, *base_vis);
+  const int64_t shots_before = edited.shots;
+  set_material(edited, object_named(base_h, object), m, *base_vis);
+  EXPECT_GT(edited.unshot_fraction(), options().converge) << "the edit must leave work to do";
+  solve(edited, *base_vis);
+  EXPECT_GT(edited.shots, shots_before);
+
+  const Hierarchy fresh_h = build_hierarchy(edit_scene(lamp, left, black));
+  const auto fresh_vis = make_visibility_backend(BackendKind::Embree, fresh_h);
+  SolverState fresh = make_solver_state(fresh_h, options());
+  solve(fresh, *fresh_vis);
+  const double d = worst_difference(edited, fresh);
+  std::printf("%s edit: worst corner difference %.4f%% of the mean radiosity\n", object.c_str(),
+              100 * d);
+  return d;
+}
+
+TEST(Edits, RaisingALightConvergesToAFreshSolve) {
+  const Vec3 brighter(8.0f);
+  EXPECT_LE(edit_then_continue("lamp", {Vec3(0.5f), brighter}, brighter, kLeft, kBlack), 0.005);
+}
+
+TEST(Edits, DimmingALightShootsNegativeEnergyAndConverges) {
+  const Vec3 dimmer(2.0f);
+  EXPECT_LE(edit_then_continue("lamp", {Vec3(0.5f), dimmer}, dimmer, kLeft, kBlack), 0.005);
+}
+
+TEST(Edits, ChangingAColourConvergesToAFreshSolve) {
+  const Vec3 green(0.2f, 0.7f, 0.3f);
+  EXPECT_LE(edit_then_continue("left", {green, Vec3(0)}, kLamp, green, kBlack), 0.005);
+}
+
+TEST(Edits, ReflectanceFromZeroConvergesToAFreshSolve) {
+  const Vec3 grey(0.7f);
+  EXPECT_LE(edit_then_continue("back", {grey, Vec3(0)}, kLamp, kLeft, grey), 0.005);
+}
+
+TEST(Edits, RejectsANonPureOrAnOutOfRangeMaterial) {
+  const Hierarchy h = build_hierarchy(edit_scene(kLamp, kLeft, kBlack));
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  SolverState s = make_solver_state(h, options());
+  EXPECT_THROW(set_material(s, -1, {}, *vis), Error);
+  EXPECT_THROW(set_material(s, object_named(h, "floor"), {Vec3(1.5f), Vec3(0)}, *vis), Error);
+  EXPECT_THROW(set_material(s, object_named(h, "floor"), {Vec3(0.5f), Vec3(-1)}, *vis), Error);
+}
+
+TEST(Edits, ForcedSubdivisionGivesNewVerticesTheirExactRadiosity) {
+  const Hierarchy h = build_hierarchy(edit_scene(kLamp, kLeft, kBlack));
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  SolverOptions o = options();
+  o.subdivision_threshold = 1e6f;  // no automatic subdivision: the floor stays coarse
+  SolverState s = make_solver_state(h, o);
+  solve(s, *vis);
+  const int32_t floor_polygon = int32_t(h.objects[size_t(object_named(h, "floor"))].first_triangle);
+  const size_t before = s.mesh.polygons[size_t(floor_polygon)].vertex_count();
+  const size_t added = force_subdivide(s, floor_polygon, *vis);
+  const PolygonMesh& m = s.mesh.polygons[size_t(floor_polygon)];
+  EXPECT_EQ(added, 3u);
+  EXPECT_EQ(m.vertex_count(), before + 3);
+  // Exact: the first new vertex holds what every logged shot gives a point there, not the
+  // mean of its edge's ends.
+  const Vec3 mid = m.position[before];
+  float interpolated = 0;
+  for (const auto& [key, v] : m.midpoints) {
+    if (v == before) {
+      interpolated = 0.5f * (m.irradiance[key >> 32].x + m.irradiance[key & 0xffffffffu].x);
+    }
+  }
+  GatherScratch sc;
+  Vec3 expected(0.0f);
+  const Vec3 centroid = (m.position[0] + m.position[1] + m.position[2]) / 3.0f;
+  for (const ShotSource& src : s.shot_log) {
+    if (src.polygon == floor_polygon) continue;
+    expected += gather_from_source(mid, h.triangles.normal[size_t(floor_polygon)], centroid, src,
+                                   *vis, gather_settings(s), sc);
+  }
+  EXPECT_FLOAT_EQ(m.irradiance[before].x, expected.x);
+  EXPECT_NE(m.irradiance[before].x, interpolated) << "computed, not the mean of its ends";
+}
+
+}  // namespace
+}  // namespace rad
