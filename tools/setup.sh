@@ -28,3 +28,13 @@ rad_build() {
   fi
   cmake --build "$BUILD" -j "$(nproc)"
 }
+
+# Node tools the tests use (the Khronos glTF validator), installed under build/npm. Not fatal:
+# the tests that need them skip with a message when they are missing.
+rad_install_node_tools() {
+  command -v npm >/dev/null 2>&1 || rad_install_missing nodejs npm || true
+  if command -v npm >/dev/null 2>&1 && [ ! -d "$BUILD/npm/node_modules/gltf-validator" ]; then
+    npm install --prefix "$BUILD/npm" --no-audit --no-fund --loglevel=error \
+      gltf-validator@2.0.0-dev.3.10 >/dev/null || echo "warning: could not install gltf-validator"
+  fi
+}

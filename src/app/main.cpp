@@ -99,10 +99,10 @@ int run(const rad::CommandLine& cmd) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int code = 0;
-  const auto cmd = rad::parse_command_line(argc, argv, &code);
-  if (!cmd) return code;
   try {
+    int code = 0;
+    const auto cmd = rad::parse_command_line(argc, argv, &code);
+    if (!cmd) return code;
     return run(*cmd);
   } catch (const rad::Error& e) {
     std::fprintf(stderr, "%s\n", e.what());

@@ -112,8 +112,11 @@ TEST(CommandLine, RejectsAnUnknownBackendOrFormatBeforeWorking) {
   EXPECT_NE(r.err.find("unknown output format"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out));
   r = run_rad("--backend octree " + (kScenes / "parallel_squares.des").string() + " /tmp/x.ply");
-  EXPECT_NE(r.code, 0);
-  EXPECT_NE(r.err.find("octree"), std::string::npos) << r.err;
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.err.rfind("error: unknown visibility backend \"octree\"", 0), 0u) << r.err;
+  r = run_rad("--tonemap sepia " + (kScenes / "parallel_squares.des").string() + " /tmp/x.ply");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.err.rfind("error: unknown tone curve 'sepia'", 0), 0u) << r.err;
 }
 
 TEST(CommandLine, HelpListsTheOptions) {
