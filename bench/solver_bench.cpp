@@ -342,6 +342,24 @@ void bm_cornell_solve(benchmark::State& st, const std::string& path, int threads
   state_counters(st, state_size(s));
 }
 
+// Pure arithmetic in parallel, no memory traffic: the speed-up the machine offers right now
+// (other processes share the cores), to read the shots' speed-ups against.
+void bm_spin(benchmark::State& st, int threads) {
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+  constexpr size_t kChunks = 64, kSteps = 1 << 18;
+  std::vector<uint64_t> out(kChunks);
+  for (auto _ : st) {
+    tbb::parallel_for(size_t(0), kChunks, [&](size_t c) {
+      uint64_t x = c + 1;
+      for (size_t i = 0; i < kSteps; ++i) x = x * 6364136223846793005ull + 1442695040888963407ull;
+      out[c] = x;
+    });
+    benchmark::DoNotOptimize(out.data());
+  }
+  st.SetItemsProcessed(int64_t(st.iterations() * kChunks * kSteps));
+  st.counters["threads"] = threads;
+}
+
 SceneSpec generated(SceneKind kind, uint64_t triangles) {
   return {std::string(to_string(kind)) + "_" + std::to_string(triangles),
           [=] { return generate_scene(kind, triangles, 1); }};
@@ -387,6 +405,13 @@ void register_all() {
     }
     b->Unit(benchmark::kMillisecond);
   };
+  auto spin = [&](const char* when) {
+    for (int t : thread_counts) {
+      timed(std::string("calib/spin/-/") + when + "/t" + std::to_string(t),
+            [=](benchmark::State& st) { bm_spin(st, t); });
+    }
+  };
+  spin("start");
   for (const SceneSpec& sc : scenes) {
     for (bool later : {false, true}) {
       for (Variant v : {Variant::EmbreePacket, Variant::EmbreeSingle, Variant::Grid}) {
@@ -416,6 +441,7 @@ void register_all() {
         name("refine", big, "embree-packet", false, all),
         [=](benchmark::State& st) { bm_refine(st, big, false, all); }, true);
   }
+  spin("end");
   timed(
       "solve/cornell_box/embree-packet/converged/t" + std::to_string(all),
       [=](benchmark::State& st) { bm_cornell_solve(st, cornell, all); }, true);
