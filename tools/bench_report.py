@@ -33,6 +33,11 @@ def load(path):
     return out
 
 
+def first_percent(pattern, text):
+    m = re.search(pattern, text)
+    return float(m.group(1)) if m else None
+
+
 def machine(path):
     info = {}
     if os.path.exists(path):
@@ -88,9 +93,11 @@ def main():
                  if n.startswith(f"calib/spin/-/{when}/t") and not n.endswith("/t1")), default=None)
         spins.append(ratio(b, a))
     ceiling = spins[0]
+    one = get(solver, "calib/spin/-/start/t1", "items_per_second")
     print(f"parallel ceiling: pure arithmetic on all cores ÷ on one core = {spins[0]} before the "
-          f"solver benchmarks, {spins[1]} after (other processes share the cores: read the "
-          f"speed-ups against this)")
+          f"solver benchmarks, {spins[1]} after; one core ran it at "
+          f"{'-' if one is None else f'{one / 1e6:.0f}M'} steps/s (other processes share the "
+          f"cores: read speed-ups and rates against this)")
     print()
 
     # Threads measured: 1 and the largest count present.
@@ -232,27 +239,45 @@ def main():
     for path in sorted(glob.glob(os.path.join(out, "cornell_*.json"))):
         tag = os.path.basename(path)[:-5]
         j = json.load(open(path))
-        err = None
+        err = bias = err_receivers = None
         cmp_path = os.path.join(out, tag + ".compare.txt")
         if os.path.exists(cmp_path):
-            mm = re.search(r"mean error: ([0-9.]+)%", open(cmp_path).read())
-            err = float(mm.group(1)) if mm else None
+            text = open(cmp_path).read()
+            err = first_percent(r"mean error:?\s+([-0-9.]+)%", text)
+            bias = first_percent(r"bias:?\s+([-+0-9.]+)%", text)
+            at = text.find("non-emitting")
+            if at >= 0:
+                err_receivers = first_percent(r"mean error:?\s+([-0-9.]+)%", text[at:])
+        cpu = None
+        time_path = os.path.join(out, tag + ".time")
+        if os.path.exists(time_path):
+            fields = open(time_path).read().split()
+            try:
+                cpu = float(fields[-2]) + float(fields[-1])  # user + system
+            except (IndexError, ValueError):
+                cpu = None
         s = j["seconds"]
         verts = j["solver"]["vertices"]
         crows.append([f"{j['options']['converge']:g}", f"{j['options']['threshold']:g}",
                       j["threads"],
                       j["solver"]["shots"], f"{verts:,}", f"{j['rays']['shot'] / 1e6:.1f}",
-                      f"{s['solve']:.2f}", f"{s['total']:.2f}",
+                      f"{s['solve']:.2f}", f"{s['total']:.2f}", "-" if cpu is None else f"{cpu:.2f}",
                       f"{j['peak_memory_bytes'] / 2**20:.0f}",
                       f"{j['peak_memory_bytes'] / max(verts, 1):.0f}",
-                      "" if err is None else f"{err:.2f}"])
+                      "" if err is None else f"{err:.2f}", "" if bias is None else f"{bias:+.2f}",
+                      "" if err_receivers is None else f"{err_receivers:.2f}"])
         if err is not None and err <= 1.0 and (best is None or s["total"] < best[0]):
             best = (s["total"], err, f"{j['options']['converge']:g}",
                     f"{j['options']['threshold']:g}")
     crows.sort(key=lambda r: float(r[7]))
     if crows:
         print(table(crows, ["converge", "threshold", "threads", "shots", "vertices", "Mrays",
-                            "solve s", "total s", "peak MB", "peak B/vertex", "mean error %"]))
+                            "solve s", "total s", "cpu s", "peak MB", "peak B/vertex", "mean error %",
+                            "bias %", "non-emitting %"]))
+        print("  mean error: rad-reference --compare, all reference points (the headline), its "
+              "bias, and the\n  mean error over the points on non-emitting polygons alone; "
+              "peak: rad's peak RSS;\n  cpu s: user + system time of the whole run (less "
+              "sensitive than wall time to other processes)")
     e2e = [b for n, b in solver.items() if n.startswith("solve/cornell_box")]
     if e2e:
         b = e2e[0]
