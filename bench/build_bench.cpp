@@ -2,7 +2,7 @@
 // voxel grids and the solver's initial state, each on 1 and on all cores.
 //
 //   build_bench [--benchmark_filter=...] [--benchmark_out=build.json]
-//   RAD_BENCH_TRIANGLES=50000   size of the generated scenes (default 50000)
+//   RAD_BENCH_TRIANGLES=50000   size of the generated scenes (default 50000; also a tenth of it)
 //   RAD_BENCH_LARGE=1           also the 1M-triangle building
 //
 // Names read kind/scene/backend/-/threads, e.g. build/building_50000/embree/-/t2.
@@ -84,11 +84,11 @@ void register_all() {
   const char* large = std::getenv("RAD_BENCH_LARGE");
   const uint64_t n = size && *size ? std::strtoull(size, nullptr, 10) : 50000;
   const int all = tbb::info::default_concurrency();
-  std::vector<std::pair<SceneKind, uint64_t>> scenes = {{SceneKind::CornellBox, n},
-                                                        {SceneKind::Soup, n},
-                                                        {SceneKind::Nested, n},
-                                                        {SceneKind::TeapotInStadium, n},
-                                                        {SceneKind::Building, n}};
+  std::vector<std::pair<SceneKind, uint64_t>> scenes;
+  for (SceneKind k : {SceneKind::CornellBox, SceneKind::Soup, SceneKind::Nested,
+                      SceneKind::TeapotInStadium, SceneKind::Building}) {
+    for (uint64_t tris : {n / 10, n}) scenes.push_back({k, tris});
+  }
   if (large && std::string(large) == "1") scenes.push_back({SceneKind::Building, 1000000});
   std::vector<int> thread_counts = {1};
   if (all >= 2) thread_counts.push_back(all);

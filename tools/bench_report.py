@@ -168,6 +168,28 @@ def main():
   this backend's BVH/grid build, {t} threads. B/vertex: solver state bytes per vertex before the
   shot (vector capacities as grown + malloc headers).""".format(t=t))
 
+    # Set-up costs per scene and size.
+    brows = {}
+    for n, b in build.items():
+        p = n.split("/")
+        if p[0] != "build":
+            continue
+        row = brows.setdefault(p[1], {"triangles": b.get("triangles", 0)})
+        row[(p[2], p[4])] = b["seconds"]
+    if brows:
+        parts = ["hierarchy", "embree", "grid", "solver-state"]
+        ts = sorted({k[1] for r in brows.values() for k in r if isinstance(k, tuple)},
+                    key=lambda x: int(x[1:]))
+        hdr = ["scene", "triangles"] + [f"{w} {t[1:]}T" for w in parts for t in ts]
+        rws = []
+        for sc, r in sorted(brows.items(), key=lambda kv: (kv[0].rsplit("_", 1)[0],
+                                                           kv[1]["triangles"])):
+            rws.append([sc, f"{int(r['triangles']):,}"]
+                       + ["-" if (w, t) not in r else f"{r[(w, t)] * 1e3:.1f}"
+                          for w in parts for t in ts])
+        print("\nSet-up times per scene and size (ms, wall clock)")
+        print(table(rws, hdr))
+
     # Refinement and end-to-end.
     rrows = []
     for n, b in solver.items():
