@@ -3,7 +3,7 @@
 set(rad_reference_dir ${CMAKE_CURRENT_LIST_DIR}/reference)
 
 add_library(rad_reference_compare STATIC
-  ${rad_reference_dir}/reference_csv.cpp
+  ${rad_reference_dir}/reference_set.cpp
   ${rad_reference_dir}/compare.cpp
   ${rad_reference_dir}/ply_reader.cpp)
 target_include_directories(rad_reference_compare PUBLIC ${CMAKE_CURRENT_LIST_DIR})

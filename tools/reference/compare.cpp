@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <ostream>
 
 #include "core/error.h"
 
@@ -39,7 +40,74 @@ Barycentric barycentric(const DVec3& a, const DVec3& b, const DVec3& c, const DV
 
 }  // namespace
 
-ComparisonReport compare_to_reference(const ShadedFacesView& f, const ReferenceSet& ref) {
+namespace {
+
+ErrorFigures figures(std::span<const PointComparison> all, const std::vector<uint8_t>& use) {
+  ErrorFigures r;
+  DVec3 sum_ref(0.0), sum_err(0.0), sum_signed(0.0), sum_stderr(0.0);
+  for (size_t i = 0; i < all.size(); ++i) {
+    if (!use[i]) continue;
+    const PointComparison& c = all[i];
+    ++r.points;
+    sum_ref += c.reference;
+    sum_err += glm::abs(c.rad - c.reference);
+    sum_signed += c.rad - c.reference;
+    sum_stderr += c.standard_error;
+  }
+  if (r.points == 0) return r;
+  const double n = double(r.points);
+  r.mean_reference = sum_ref / n;
+  r.mean_abs_error = sum_err / n;
+  r.channel_error = r.mean_abs_error / glm::max(r.mean_reference, DVec3(1e-300));
+  const double scale =
+      std::max((r.mean_reference.x + r.mean_reference.y + r.mean_reference.z) / 3.0, 1e-300);
+  auto mean3 = [](const DVec3& v) { return (v.x + v.y + v.z) / 3.0; };
+  r.mean_error = mean3(r.mean_abs_error) / scale;
+  r.mean_signed_error = mean3(sum_signed) / n / scale;
+  r.reference_noise = mean3(sum_stderr) / n / scale;
+  for (size_t i = 0; i < all.size(); ++i) {
+    if (!use[i]) continue;
+    const PointComparison& c = all[i];
+    const DVec3 e = glm::abs(c.rad - c.reference);
+    r.worst_channel_error =
+        glm::max(r.worst_channel_error, e / glm::max(r.mean_reference, DVec3(1e-300)));
+    const double err = mean3(e) / scale;
+    if (err > r.worst_error) {
+      r.worst_error = err;
+      r.worst = c;
+    }
+  }
+  return r;
+}
+
+std::string format_figures(const ErrorFigures& r) {
+  std::string s;
+  s += fmt::format(
+      "  mean error {:.3f}% of the mean radiosity (bias {:+.3f}%, reference noise "
+      "{:.3f}%), {} points\n",
+      100.0 * r.mean_error, 100.0 * r.mean_signed_error, 100.0 * r.reference_noise, r.points);
+  s += fmt::format("  per channel r g b: mean reference {:.5g} {:.5g} {:.5g}\n", r.mean_reference.x,
+                   r.mean_reference.y, r.mean_reference.z);
+  s += fmt::format("    mean |error| / mean reference:  {:.3f}% {:.3f}% {:.3f}%\n",
+                   100.0 * r.channel_error.x, 100.0 * r.channel_error.y, 100.0 * r.channel_error.z);
+  s += fmt::format("    worst |error| / mean reference: {:.2f}% {:.2f}% {:.2f}%\n",
+                   100.0 * r.worst_channel_error.x, 100.0 * r.worst_channel_error.y,
+                   100.0 * r.worst_channel_error.z);
+  const PointComparison& w = r.worst;
+  s += fmt::format(
+      "  worst point #{} on polygon {} at ({:.4g}, {:.4g}, {:.4g}): rad ({:.4g}, {:.4g}, "
+      "{:.4g}) vs reference ({:.4g}, {:.4g}, {:.4g}) +- ({:.2g}, {:.2g}, {:.2g}): {:.2f}% of "
+      "the mean radiosity\n",
+      w.index, w.triangle, w.position.x, w.position.y, w.position.z, w.rad.x, w.rad.y, w.rad.z,
+      w.reference.x, w.reference.y, w.reference.z, w.standard_error.x, w.standard_error.y,
+      w.standard_error.z, 100.0 * r.worst_error);
+  return s;
+}
+
+}  // namespace
+
+ComparisonReport compare_to_reference(const ShadedFacesView& f, const ReferenceSet& ref,
+                                      std::span<const uint8_t> emitting) {
   const size_t face_count = f.indices.size() / 3;
   if (f.position.size() != f.radiosity.size() || f.face_polygon.size() != face_count ||
       ref.values.size() != ref.points.size()) {
@@ -53,8 +121,6 @@ ComparisonReport compare_to_reference(const ShadedFacesView& f, const ReferenceS
   }
 
   ComparisonReport r;
-  r.points = ref.points.size();
-  DVec3 sum_ref(0.0), sum_err(0.0), sum_stderr(0.0);
   for (size_t i = 0; i < ref.points.size(); ++i) {
     const ReferencePoint& point = ref.points[i];
     if (point.triangle < 0 || point.triangle >= polygons ||
@@ -87,55 +153,52 @@ ComparisonReport compare_to_reference(const ShadedFacesView& f, const ReferenceS
     c.rad = w.x * DVec3(f.radiosity[v[0]]) + w.y * DVec3(f.radiosity[v[1]]) +
             w.z * DVec3(f.radiosity[v[2]]);
     c.reference = ref.values[i].radiosity;
-    c.stderr_ = ref.values[i].stderr_;
-    sum_ref += c.reference;
-    sum_err += glm::abs(c.rad - c.reference);
-    sum_stderr += c.stderr_;
+    c.standard_error = ref.values[i].standard_error;
     r.per_point.push_back(c);
   }
-  const double n = double(std::max<size_t>(r.points, 1));
-  r.mean_reference = sum_ref / n;
-  r.mean_abs_error = sum_err / n;
-  r.channel_error = r.mean_abs_error / glm::max(r.mean_reference, DVec3(1e-300));
-  const double mean_all = (r.mean_reference.x + r.mean_reference.y + r.mean_reference.z) / 3.0;
-  const double scale = std::max(mean_all, 1e-300);
-  r.mean_error = (r.mean_abs_error.x + r.mean_abs_error.y + r.mean_abs_error.z) / 3.0 / scale;
-  r.reference_noise = (sum_stderr.x + sum_stderr.y + sum_stderr.z) / (3.0 * n) / scale;
-  for (const PointComparison& c : r.per_point) {
-    const DVec3 e = glm::abs(c.rad - c.reference);
-    r.worst_channel_error =
-        glm::max(r.worst_channel_error, e / glm::max(r.mean_reference, DVec3(1e-300)));
-    const double err = (e.x + e.y + e.z) / 3.0 / scale;
-    if (err > r.worst_error) {
-      r.worst_error = err;
-      r.worst = c;
+  std::vector<uint8_t> use(r.per_point.size(), 1);
+  r.all = figures(r.per_point, use);
+  if (!emitting.empty()) {
+    for (size_t i = 0; i < use.size(); ++i) {
+      const size_t p = size_t(r.per_point[i].triangle);
+      use[i] = p < emitting.size() && emitting[p] ? 0 : 1;
     }
+    r.reflecting = figures(r.per_point, use);
   }
   return r;
+}
+
+void write_point_comparisons(std::ostream& out, const ComparisonReport& r) {
+  out << "index,polygon,x,y,z,rad_r,rad_g,rad_b,ref_r,ref_g,ref_b,stderr_r,stderr_g,stderr_b\n";
+  for (const PointComparison& c : r.per_point) {
+    out << fmt::format(
+        "{},{},{:.9g},{:.9g},{:.9g},{:.7g},{:.7g},{:.7g},{:.7g},{:.7g},{:.7g},{:.3g},"
+        "{:.3g},{:.3g}\n",
+        c.index, c.triangle, c.position.x, c.position.y, c.position.z, c.rad.x, c.rad.y, c.rad.z,
+        c.reference.x, c.reference.y, c.reference.z, c.standard_error.x, c.standard_error.y,
+        c.standard_error.z);
+  }
+}
+
+std::vector<uint8_t> emitting_polygons(const Hierarchy& h) {
+  std::vector<uint8_t> e(h.triangles.size(), 0);
+  for (size_t t = 0; t < e.size(); ++t) {
+    const Material& m = h.objects[size_t(h.triangles.object[t])].material;
+    e[t] = max_component(m.emission) > 0.0f ? 1 : 0;
+  }
+  return e;
 }
 
 std::string format_report(const ComparisonReport& r) {
   std::string s;
   s += fmt::format(
-      "points: {} ({} outside their faces, largest distance from a face plane {:.3g})\n", r.points,
-      r.outside, r.largest_plane_distance);
-  s += fmt::format("mean error: {:.3f}% of the mean radiosity (reference noise {:.3f}%)\n",
-                   100.0 * r.mean_error, 100.0 * r.reference_noise);
-  s += fmt::format("per channel (r g b): mean reference {:.5g} {:.5g} {:.5g}\n", r.mean_reference.x,
-                   r.mean_reference.y, r.mean_reference.z);
-  s += fmt::format("  mean |error| / mean reference: {:.3f}% {:.3f}% {:.3f}%\n",
-                   100.0 * r.channel_error.x, 100.0 * r.channel_error.y, 100.0 * r.channel_error.z);
-  s += fmt::format("  worst |error| / mean reference: {:.2f}% {:.2f}% {:.2f}%\n",
-                   100.0 * r.worst_channel_error.x, 100.0 * r.worst_channel_error.y,
-                   100.0 * r.worst_channel_error.z);
-  const PointComparison& w = r.worst;
-  s += fmt::format(
-      "worst point: #{} on polygon {} at ({:.4g}, {:.4g}, {:.4g}): rad ({:.4g}, {:.4g}, {:.4g}) vs "
-      "reference ({:.4g}, {:.4g}, {:.4g}) +- ({:.2g}, {:.2g}, {:.2g}): {:.2f}% of the mean "
-      "radiosity\n",
-      w.index, w.triangle, w.position.x, w.position.y, w.position.z, w.rad.x, w.rad.y, w.rad.z,
-      w.reference.x, w.reference.y, w.reference.z, w.stderr_.x, w.stderr_.y, w.stderr_.z,
-      100.0 * r.worst_error);
+      "{} points ({} outside their faces; largest distance from a face plane "
+      "{:.3g})\n",
+      r.per_point.size(), r.outside, r.largest_plane_distance);
+  s += "all points:\n" + format_figures(r.all);
+  if (r.reflecting.points > 0) {
+    s += "points on non-emitting polygons:\n" + format_figures(r.reflecting);
+  }
   return s;
 }
 

@@ -3,12 +3,13 @@
 #pragma once
 
 #include <cstdint>
+#include <iosfwd>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "hierarchy/hierarchy.h"
-#include "reference/reference_point.h"
+#include "reference/reference_set.h"
 
 namespace rad {
 
@@ -26,26 +27,24 @@ struct PointComparison {
   size_t index = 0;  // into the reference set
   int32_t triangle = 0;
   Vec3 position{0.0f};
-  DVec3 rad{0.0};        // Gouraud-interpolated from rad's face
-  DVec3 reference{0.0};  // the reference value
-  DVec3 stderr_{0.0};    // the reference's standard error
+  DVec3 rad{0.0};             // Gouraud-interpolated from rad's face
+  DVec3 reference{0.0};       // the reference value
+  DVec3 standard_error{0.0};  // the reference's standard error
 };
 
-struct ComparisonReport {
+/// Error figures over a set of points.
+struct ErrorFigures {
   size_t points = 0;
-  /// Points not inside any face of their polygon (by more than 1e-4 in barycentrics); the
-  /// nearest face's interpolation, clamped to it, is used for them.
-  size_t outside = 0;
-  double largest_plane_distance = 0.0;  // of a point from the face used, scene units
-
   DVec3 mean_reference{0.0};  // per channel, over points
   DVec3 mean_abs_error{0.0};  // per channel, mean over points of |B_rad - B_ref|
   DVec3 channel_error{0.0};   // mean_abs_error / mean_reference, per channel
   /// The headline figure: mean over points and channels of |B_rad - B_ref| divided by the mean
   /// over points and channels of B_ref.
   double mean_error = 0.0;
-  DVec3 worst_channel_error{
-      0.0};  // max over points of |B_rad - B_ref| / mean_reference, per channel
+  /// Mean over points and channels of B_rad - B_ref, over the mean radiosity: a bias.
+  double mean_signed_error = 0.0;
+  /// Max over points of |B_rad - B_ref| / mean_reference, per channel.
+  DVec3 worst_channel_error{0.0};
   /// The point whose channel-mean |B_rad - B_ref| is largest, and that error over the mean
   /// radiosity (all channels).
   PointComparison worst;
@@ -53,15 +52,37 @@ struct ComparisonReport {
   /// The reference's own noise: mean over points and channels of its standard error, over the
   /// mean radiosity. A perfect solver would still show a mean error of about 0.8 times this.
   double reference_noise = 0.0;
+};
+
+struct ComparisonReport {
+  /// Points not inside any face of their polygon (by more than 1e-4 in barycentrics); the
+  /// nearest face's interpolation, clamped to it, is used for them.
+  size_t outside = 0;
+  double largest_plane_distance = 0.0;  // of a point from the face used, scene units
+
+  ErrorFigures all;  // every point
+  /// Only points on polygons that do not emit (when emitters were named; else points = 0).
+  /// Emitters' radiosity is mostly their emission, exact in any solver, yet it dominates the
+  /// mean radiosity of a scene lit by a small bright source such as the Cornell box.
+  ErrorFigures reflecting;
 
   std::vector<PointComparison> per_point;
 };
 
 /// For each reference point, finds the face of the same polygon (triangle index = polygon id)
 /// that contains it, interpolates the three vertex radiosities with the point's barycentric
-/// coordinates in that face, and gathers the error figures. Throws rad::Error if a point's
-/// polygon has no faces or the view's arrays disagree in size.
-ComparisonReport compare_to_reference(const ShadedFacesView& faces, const ReferenceSet& reference);
+/// coordinates in that face, and gathers the error figures. `emitting[p]` != 0 marks polygon p
+/// as an emitter (for ComparisonReport::reflecting; may be empty). Throws rad::Error if a
+/// point's polygon has no faces or the view's arrays disagree in size.
+ComparisonReport compare_to_reference(const ShadedFacesView& faces, const ReferenceSet& reference,
+                                      std::span<const uint8_t> emitting = {});
+
+/// Every point as CSV: index, polygon, x, y, z, rad_r, rad_g, rad_b, ref_r, ref_g, ref_b,
+/// stderr_r, stderr_g, stderr_b.
+void write_point_comparisons(std::ostream& out, const ComparisonReport& report);
+
+/// 1 for every triangle (= polygon) of h whose material emits, else 0.
+std::vector<uint8_t> emitting_polygons(const Hierarchy& h);
 
 /// A few lines for people: the headline, per-channel figures, the worst point, the noise.
 std::string format_report(const ComparisonReport& report);

@@ -48,12 +48,14 @@ DVec3 to_d(const Vec3& v) { return DVec3(v); }
 
 }  // namespace
 
-PathTracer::PathTracer(const Hierarchy& h, int roulette_depth)
+PathTracer::PathTracer(const Hierarchy& h, int roulette_depth, bool next_event, int max_bounces)
     : h_(&h),
       scene_(h.triangles),
       // Far above float rounding of coordinates (~1e-7 of the scene) and far below features.
       offset_(1e-5f * std::max(h.bounds.diagonal(), 1e-20f)),
-      roulette_depth_(roulette_depth) {
+      roulette_depth_(roulette_depth),
+      next_event_(next_event),
+      max_bounces_(max_bounces) {
   const Triangles& t = h.triangles;
   double total = 0.0;
   for (size_t i = 0; i < t.size(); ++i) {
@@ -113,7 +115,7 @@ DVec3 PathTracer::sample_irradiance(const Vec3& p0, const Vec3& n0, Pcg32& rng) 
   DVec3 irradiance(0.0), throughput(1.0);
   Vec3 p = p0, n = n0;
   for (int depth = 0;; ++depth) {
-    irradiance += throughput * direct(p, n, rng);
+    if (next_event_) irradiance += throughput * direct(p, n, rng);
     const Vec3 w = cosine_direction(n, rng);
     const RayHit hit = scene_.intersect(p + n * offset_, w, std::numeric_limits<float>::max());
     if (hit.triangle < 0) break;  // escaped
@@ -126,9 +128,11 @@ DVec3 PathTracer::sample_irradiance(const Vec3& p0, const Vec3& n0, Pcg32& rng) 
       const double cos_x = double(glm::dot(n, w));
       const double r = double(hit.t);
       const double weight =
-          power_heuristic(cos_x / kPi, light_pdf(hit.triangle, r * r, double(cos_y)));
+          next_event_ ? power_heuristic(cos_x / kPi, light_pdf(hit.triangle, r * r, double(cos_y)))
+                      : 1.0;
       irradiance += throughput * to_d(m.emission) * weight;
     }
+    if (max_bounces_ >= 0 && depth >= max_bounces_) break;
     double survive = 1.0;
     if (depth + 1 >= roulette_depth_) {
       survive = std::min(0.95, double(max_component(m.reflectance)));
@@ -153,16 +157,19 @@ DVec3 PathTracer::sample_radiosity(const ReferencePoint& point, Pcg32& rng) cons
 
 namespace {
 
-// A point's running sums: everything needed to continue sampling it and to report it.
+// A point's running sums: everything needed to continue sampling it and to report it. Sums
+// are of B - shift (shift = the point's emission, which every sample contains) so the variance
+// does not cancel against a large mean.
 struct Accumulator {
   Pcg32 rng;
+  DVec3 shift{0.0};
   DVec3 sum{0.0}, sum_sq{0.0};
   uint64_t n = 0;
 
-  DVec3 mean() const { return sum / double(n); }
+  DVec3 mean() const { return shift + sum / double(n); }
   // Standard error of the mean, per channel.
-  DVec3 stderr_() const {
-    const DVec3 m = mean();
+  DVec3 standard_error() const {
+    const DVec3 m = sum / double(n);
     const DVec3 var = glm::max(sum_sq / double(n) - m * m, DVec3(0.0)) * (double(n) / (n - 1));
     return glm::sqrt(var / double(n));
   }
@@ -170,7 +177,7 @@ struct Accumulator {
 
 void run(const PathTracer& tracer, const ReferencePoint& point, Accumulator& a, uint64_t count) {
   for (uint64_t i = 0; i < count; ++i) {
-    const DVec3 b = tracer.sample_radiosity(point, a.rng);
+    const DVec3 b = tracer.sample_radiosity(point, a.rng) - a.shift;
     a.sum += b;
     a.sum_sq += b * b;
   }
@@ -183,10 +190,12 @@ std::vector<ReferenceValue> estimate_radiosity(
     const Hierarchy& h, std::span<const ReferencePoint> points, const TraceOptions& options,
     TraceStats* stats, const std::function<void(size_t, size_t)>& progress) {
   const auto start = std::chrono::steady_clock::now();
-  const PathTracer tracer(h, options.roulette_depth);
+  const PathTracer tracer(h, options.roulette_depth, options.next_event, options.max_bounces);
   std::vector<Accumulator> acc;
   acc.reserve(points.size());
-  for (size_t i = 0; i < points.size(); ++i) acc.push_back({Pcg32(options.seed, i)});
+  for (size_t i = 0; i < points.size(); ++i) {
+    acc.push_back({Pcg32(options.seed, i), DVec3(tracer.material(points[i].triangle).emission)});
+  }
 
   // Pilot: a fixed number of samples per point gives the mean radiosity that sets the target.
   const uint64_t pilot = std::max<uint64_t>(options.pilot_samples, 2);
@@ -209,12 +218,13 @@ std::vector<ReferenceValue> estimate_radiosity(
         FlushDenormals denormals;
         Accumulator& a = acc[i];
         while (a.n < options.max_samples) {
-          const DVec3 ratio = a.stderr_() / target;
+          const DVec3 ratio = a.standard_error() / target;
           const double worst = std::max({ratio.x, ratio.y, ratio.z});
           if (worst <= 1.0) break;
-          const double wanted = 1.1 * double(a.n) * worst * worst;
-          uint64_t more = std::max<uint64_t>(options.min_batch, uint64_t(wanted) - a.n);
-          more = std::min(more, options.max_samples - a.n);
+          const double wanted =
+              std::min(1.1 * double(a.n) * worst * worst, double(options.max_samples));
+          const uint64_t more = std::min(std::max(options.min_batch, uint64_t(wanted) - a.n),
+                                         options.max_samples - a.n);
           run(tracer, points[i], a, more);
         }
         const size_t finished = ++done;
@@ -230,11 +240,11 @@ std::vector<ReferenceValue> estimate_radiosity(
   s.mean_radiosity = DVec3(0.0);
   for (size_t i = 0; i < points.size(); ++i) {
     values[i].radiosity = acc[i].mean();
-    values[i].stderr_ = acc[i].stderr_();
+    values[i].standard_error = acc[i].standard_error();
     values[i].samples = acc[i].n;
     s.samples += acc[i].n;
     s.mean_radiosity += values[i].radiosity;
-    const DVec3 rel = values[i].stderr_ / glm::max(mean, DVec3(1e-300));
+    const DVec3 rel = values[i].standard_error / glm::max(mean, DVec3(1e-300));
     s.worst_relative_stderr = std::max({s.worst_relative_stderr, rel.x, rel.y, rel.z});
     if (acc[i].n >= options.max_samples) ++s.points_at_max_samples;
   }

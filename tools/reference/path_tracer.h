@@ -9,7 +9,7 @@
 
 #include "hierarchy/hierarchy.h"
 #include "reference/ray_scene.h"
-#include "reference/reference_point.h"
+#include "reference/reference_set.h"
 #include "reference/rng.h"
 
 namespace rad {
@@ -18,11 +18,16 @@ struct TraceOptions {
   uint64_t seed = 1;
   /// Sample every point until the standard error of each channel is at most this fraction of
   /// that channel's mean radiosity over all points (or max_samples is reached).
-  double target_stderr = 0.003;
+  double target_stderr = 0.002;
   uint64_t pilot_samples = 1024;  // per point, before the mean radiosity is known
   uint64_t min_batch = 1024;      // smallest number of samples added at a time
   uint64_t max_samples = uint64_t(1) << 22;
   int roulette_depth = 3;  // bounces before Russian roulette starts
+  /// false: no next-event estimation, emission counted only where a path hits an emitter
+  /// (much noisier; a check on the MIS weights).
+  bool next_event = true;
+  /// Bounces after the first surface (0: direct light only); < 0: no limit. For diagnosis.
+  int max_bounces = -1;
 };
 
 /// Path tracer over a hierarchy's triangles with rad's model: Lambertian, one-sided (only the
@@ -44,7 +49,8 @@ struct TraceOptions {
 class PathTracer {
  public:
   /// Keeps a pointer to `h`, which must outlive the tracer. Throws rad::Error if Embree fails.
-  explicit PathTracer(const Hierarchy& h, int roulette_depth = 3);
+  PathTracer(const Hierarchy& h, int roulette_depth = 3, bool next_event = true,
+             int max_bounces = -1);
 
   /// One sample of the irradiance H at point p with front normal n (exitance units: in a
   /// uniform diffuse environment of radiosity B0, H = B0). Thread-safe; the calling thread
@@ -68,6 +74,8 @@ class PathTracer {
   RayScene scene_;
   float offset_;
   int roulette_depth_;
+  bool next_event_;
+  int max_bounces_;
   std::vector<int32_t> emitters_;    // triangles with emission
   std::vector<double> emitter_cdf_;  // by power (area x mean emission), last = 1
   std::vector<double> area_pdf_;     // per triangle: P(chosen) / area; 0 for non-emitters

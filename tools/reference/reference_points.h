@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "hierarchy/hierarchy.h"
-#include "reference/reference_point.h"
+#include "reference/reference_set.h"
 
 namespace rad {
 

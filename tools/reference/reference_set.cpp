@@ -1,3 +1,5 @@
+#include "reference/reference_set.h"
+
 #include <fmt/format.h>
 
 #include <fstream>
@@ -6,7 +8,6 @@
 #include <sstream>
 
 #include "core/error.h"
-#include "reference/reference_point.h"
 
 namespace rad {
 
@@ -23,7 +24,7 @@ void write_reference_csv(std::ostream& out, const ReferenceSet& set) {
     out << fmt::format(
         "{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.7g},{:.7g},{:.7g},{:.3g},{:.3g},{:.3g}\n",
         p.triangle, p.u, p.v, p.position.x, p.position.y, p.position.z, r.radiosity.x,
-        r.radiosity.y, r.radiosity.z, r.stderr_.x, r.stderr_.y, r.stderr_.z);
+        r.radiosity.y, r.radiosity.z, r.standard_error.x, r.standard_error.y, r.standard_error.z);
   }
 }
 
@@ -74,7 +75,7 @@ ReferenceSet read_reference_csv(std::istream& in, const std::string& name) {
     p.position = Vec3(float(v[3]), float(v[4]), float(v[5]));
     ReferenceValue r;
     r.radiosity = DVec3(v[6], v[7], v[8]);
-    r.stderr_ = DVec3(v[9], v[10], v[11]);
+    r.standard_error = DVec3(v[9], v[10], v[11]);
     set.points.push_back(p);
     set.values.push_back(r);
   }

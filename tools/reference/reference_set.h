@@ -1,5 +1,5 @@
-// Reference points on a scene's triangles and the radiosity estimated there, as stored in the
-// reference CSV files under scenes/reference/.
+// Reference points on a scene's triangles, the radiosity estimated there, and the CSV files
+// that hold them (scenes/reference/).
 #pragma once
 
 #include <cstdint>
@@ -23,7 +23,7 @@ struct ReferencePoint {
 /// the estimate per channel and the number of path samples behind it.
 struct ReferenceValue {
   DVec3 radiosity{0.0};
-  DVec3 stderr_{0.0};
+  DVec3 standard_error{0.0};
   uint64_t samples = 0;
 };
 
