@@ -1,0 +1,153 @@
+// Gouraud interpolation over rad's output faces at reference points, the error figures, and
+// rad's PLY files read back.
+#include "reference/compare.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "core/error.h"
+#include "export/ply_writer.h"
+#include "reference/ply_reader.h"
+#include "reference/reference_points.h"
+
+namespace rad {
+namespace {
+
+// Two polygons: the unit square at z = 0 (triangles 0 and 1) facing +z.
+Hierarchy unit_square() {
+  SceneDescription s;
+  s.name = "square";
+  ObjectDescription o;
+  o.name = "square";
+  o.material = {Vec3(0.5f), Vec3(0.0f)};
+  o.triangles = {{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0)},
+                 {Vec3(0, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)}};
+  s.objects = {o};
+  s.roots = {0};
+  return build_hierarchy(s);
+}
+
+Vec3 field(const Vec3& p) { return Vec3(1.0f + p.x, 2.0f + p.y, 3.0f + p.x - p.y); }
+
+// Each polygon cut into four faces at its edge midpoints (vertices not shared across
+// polygons, as rad writes them), radiosity = field at the vertices.
+OutputMesh split_mesh(const Hierarchy& h) {
+  OutputMesh m;
+  for (size_t t = 0; t < h.triangles.size(); ++t) {
+    const auto& c = h.triangles.corners[t];
+    const uint32_t base = uint32_t(m.position.size());
+    const Vec3 p[6] = {
+        c[0], c[1], c[2], (c[0] + c[1]) * 0.5f, (c[1] + c[2]) * 0.5f, (c[2] + c[0]) * 0.5f};
+    for (const Vec3& q : p) {
+      m.position.push_back(q);
+      m.radiosity.push_back(field(q));
+      m.display.push_back(field(q));
+    }
+    for (uint32_t i : {0u, 3u, 5u, 3u, 1u, 4u, 5u, 4u, 2u, 3u, 4u, 5u})
+      m.indices.push_back(base + i);
+    m.face_polygon.insert(m.face_polygon.end(), 4, int32_t(t));
+  }
+  return m;
+}
+
+ShadedFacesView view(const OutputMesh& m) {
+  return {m.position, m.radiosity, m.indices, m.face_polygon};
+}
+
+ReferenceSet reference_of(const Hierarchy& h, float scale) {
+  ReferenceSet r;
+  PointOptions o;
+  o.total = 100;
+  r.points = make_reference_points(h.triangles, o);
+  for (const ReferencePoint& p : r.points) {
+    ReferenceValue v;
+    v.radiosity = DVec3(field(p.position)) * double(scale);
+    v.standard_error = DVec3(0.01);
+    r.values.push_back(v);
+  }
+  return r;
+}
+
+TEST(Compare, LinearFieldIsInterpolatedExactly) {
+  const Hierarchy h = unit_square();
+  const OutputMesh m = split_mesh(h);
+  const ComparisonReport r = compare_to_reference(view(m), reference_of(h, 1.0f));
+  EXPECT_EQ(r.all.points, 100u);
+  EXPECT_EQ(r.outside, 0u);
+  EXPECT_LT(r.all.mean_error, 1e-6);
+  EXPECT_LT(r.all.worst_error, 1e-6);
+  EXPECT_EQ(r.reflecting.points, 0u);  // no emitters named
+  EXPECT_LT(r.largest_plane_distance, 1e-6);
+}
+
+TEST(Compare, ReportsRelativeErrorsPerChannelAndOverall) {
+  const Hierarchy h = unit_square();
+  const OutputMesh m = split_mesh(h);
+  // The reference 2% brighter: rad is off by 1/1.02 - 1 of the reference everywhere.
+  const ComparisonReport r = compare_to_reference(view(m), reference_of(h, 1.02f));
+  const double expected = 1.0 - 1.0 / 1.02;
+  EXPECT_NEAR(r.all.mean_error, expected, 1e-5);
+  EXPECT_NEAR(r.all.mean_signed_error, -expected, 1e-5);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(r.all.channel_error[c], expected, 1e-5);
+  EXPECT_GT(r.all.worst_error, expected);
+  const DVec3& mean = r.all.mean_reference;
+  EXPECT_NEAR(r.all.reference_noise, 0.01 / ((mean.x + mean.y + mean.z) / 3.0), 1e-9);
+  EXPECT_FALSE(format_report(r).empty());
+}
+
+TEST(Compare, FiguresWithoutEmittersLeaveTheirPointsOut) {
+  const Hierarchy h = unit_square();
+  OutputMesh m = split_mesh(h);
+  for (size_t v = 0; v < m.position.size() / 2; ++v) m.radiosity[v] *= 2.0f;  // polygon 0 off
+  const std::vector<uint8_t> emitting = {1, 0};                               // ... but it "emits"
+  const ComparisonReport r = compare_to_reference(view(m), reference_of(h, 1.0f), emitting);
+  EXPECT_GT(r.all.mean_error, 0.1);
+  EXPECT_EQ(r.reflecting.points + 50u, r.all.points);
+  EXPECT_LT(r.reflecting.mean_error, 1e-6);
+  EXPECT_EQ(emitting_polygons(h), std::vector<uint8_t>({0, 0}));
+}
+
+TEST(Compare, UsesOnlyFacesOfThePointsOwnPolygon) {
+  const Hierarchy h = unit_square();
+  OutputMesh m = split_mesh(h);
+  for (size_t v = 0; v < m.position.size() / 2; ++v) m.radiosity[v] = Vec3(100.0f);  // polygon 0
+  ReferenceSet ref = reference_of(h, 1.0f);
+  const ComparisonReport r = compare_to_reference(view(m), ref);
+  for (const PointComparison& c : r.per_point) {
+    const double expected = c.triangle == 0 ? 100.0 : c.reference.x;
+    EXPECT_NEAR(c.rad.x, expected, 1e-4) << "point " << c.index;
+  }
+}
+
+TEST(Compare, MissingPolygonIsAnError) {
+  const Hierarchy h = unit_square();
+  OutputMesh m = split_mesh(h);
+  m.indices.resize(m.indices.size() / 2);
+  m.face_polygon.resize(m.face_polygon.size() / 2);
+  EXPECT_THROW(compare_to_reference(view(m), reference_of(h, 1.0f)), Error);
+}
+
+TEST(RadiosityPly, ReadsBackWhatRadWritesAndRecoversPolygons) {
+  const Hierarchy h = unit_square();
+  const OutputMesh m = split_mesh(h);
+  for (bool ascii : {false, true}) {
+    const std::string path =
+        std::string(RAD_BINARY_DIR) + (ascii ? "/compare_test_ascii.ply" : "/compare_test.ply");
+    {
+      std::ofstream out(path, std::ios::binary);
+      write_ply(out, m, ToneMap{}, ascii);
+    }
+    const PlyMesh back = read_radiosity_ply(path);
+    ASSERT_EQ(back.position.size(), m.position.size());
+    EXPECT_EQ(back.indices, m.indices);
+    for (size_t v = 0; v < m.position.size(); ++v) {
+      EXPECT_NEAR(glm::length(back.position[v] - m.position[v]), 0.0f, 1e-6f);
+      EXPECT_NEAR(glm::length(back.radiosity[v] - m.radiosity[v]), 0.0f, 1e-5f);
+    }
+    EXPECT_EQ(assign_face_polygons(h.triangles, back.position, back.indices), m.face_polygon);
+  }
+}
+
+}  // namespace
+}  // namespace rad

@@ -1,0 +1,50 @@
+// rad's Cornell box, solved with the default options and the Embree backend, against the
+// independent path-traced reference in scenes/reference/cornell_box.csv (issue 4, "Done
+// when": mean error <= 1% of the mean radiosity, displayed radiosity Gouraud-interpolated).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+
+#include "export/output_mesh.h"
+#include "reference/compare.h"
+#include "scene/parser.h"
+#include "solver/solver.h"
+#include "visibility/backend.h"
+
+namespace rad {
+namespace {
+
+TEST(CornellReference, DefaultSolveWithinOnePercentMeanOfPathTracedReference) {
+  const std::string root = RAD_SOURCE_DIR;
+  const Hierarchy h = build_hierarchy(parse_scene_file(root + "/scenes/cornell_box.des"));
+  const ReferenceSet reference =
+      read_reference_csv_file(root + "/scenes/reference/cornell_box.csv");
+  ASSERT_GT(reference.points.size(), 500u);
+
+  const auto start = std::chrono::steady_clock::now();
+  const auto backend = make_visibility_backend(BackendKind::Embree, h);
+  SolverState state = make_solver_state(h, SolverOptions{});
+  const StopReason stop = solve(state, *backend);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const OutputMesh mesh = make_output_mesh(state, /*ambient=*/false);
+
+  const ComparisonReport r =
+      compare_to_reference({mesh.position, mesh.radiosity, mesh.indices, mesh.face_polygon},
+                           reference, emitting_polygons(h));
+  std::printf("rad (default options, Embree): %s after %lld shots, %zu faces, %.1f s\n",
+              to_string(stop), (long long)state.shots, mesh.face_count(), seconds);
+  std::fputs(format_report(r).c_str(), stdout);
+  // Every point, for looking at where the error is.
+  const std::string dump = std::string(RAD_BINARY_DIR) + "/cornell_reference_points.csv";
+  std::ofstream out(dump);
+  write_point_comparisons(out, r);
+  std::printf("per-point values: %s\n", dump.c_str());
+  EXPECT_EQ(r.outside, 0u);
+  EXPECT_LE(r.all.mean_error, 0.01) << "issue 4 target: mean error <= 1% of the mean radiosity";
+}
+
+}  // namespace
+}  // namespace rad
