@@ -2,7 +2,10 @@
 
 #include <cmath>
 
+#include <tbb/parallel_for.h>
+
 #include "mesh/sample_points.h"
+#include "mesh/subdivide.h"
 #include "visibility/segment.h"
 
 namespace rad {
@@ -41,6 +44,24 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   s.hierarchy = &h;
   s.options = options;
   s.mesh = make_mesh(h);
+  // Default minimum size: 1/256 of the scene diagonal (about 2 mm in the 0.55 m Cornell box).
+  s.min_size = options.min_size > 0.0f ? options.min_size : h.bounds.diagonal() / 256.0f;
+  s.max_size = options.max_size > 0.0f ? options.max_size : h.bounds.diagonal() / 16.0f;
+  s.max_size = std::max(s.max_size, 2.0f * s.min_size);
+  // The initial mesh: uniform splits down to max_size (vertices have no radiosity yet).
+  tbb::parallel_for(size_t(0), s.mesh.polygons.size(), [&](size_t p) {
+    PolygonMesh& m = s.mesh.polygons[p];
+    std::vector<uint32_t> big;
+    for (bool any = true; any;) {
+      big.clear();
+      for_each_leaf(m, [&](uint32_t e) {
+        if (longest_edge(m, e) > s.max_size) big.push_back(e);
+      });
+      NewMidpoint created[3];
+      for (uint32_t e : big) split_element(m, e, created);
+      any = !big.empty();
+    }
+  });
   s.materials.reserve(h.objects.size());
   for (const SceneObject& o : h.objects) s.materials.push_back(o.material);
   s.unshot_energy.assign(h.triangles.size(), 0.0);
@@ -55,8 +76,6 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   }
   s.radiosity_scale = total_area > 0.0 ? float(s.emitted_energy / total_area) : 1.0f;
   if (!(s.radiosity_scale > 0.0f)) s.radiosity_scale = 1.0f;
-  // Default minimum size: 1/256 of the scene diagonal (about 2 mm in the 0.55 m Cornell box).
-  s.min_size = options.min_size > 0.0f ? options.min_size : h.bounds.diagonal() / 256.0f;
   s.shadow_offset = shadow_offset(h.bounds);
   s.sample_barycentrics = regular_sample_barycentrics(options.sample_grid);
   return s;

@@ -49,6 +49,7 @@ struct SolverState {
   double absorbed_energy = 0.0;  // sum over shots of received energy not reflected
   float radiosity_scale = 1.0f;  // emitted power / total area: what relative limits scale by
   float min_size = 0.0f;         // smallest element edge
+  float max_size = 0.0f;         // largest element edge of the initial mesh
   float shadow_offset = 0.0f;
   std::vector<Vec3> sample_barycentrics;  // where a source is sampled, in its own barycentrics
   /// Every shot so far, in order. New vertices made by refinement gather the major ones again;

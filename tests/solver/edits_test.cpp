@@ -118,6 +118,7 @@ TEST(Edits, ForcedSubdivisionGivesNewVerticesTheirExactRadiosity) {
   const auto vis = make_visibility_backend(BackendKind::Embree, h);
   SolverOptions o = options();
   o.subdivision_threshold = 1e6f;  // no automatic subdivision: the floor stays coarse
+  o.max_size = 1e6f;
   SolverState s = make_solver_state(h, o);
   solve(s, *vis);
   const int32_t floor_polygon = int32_t(h.objects[size_t(object_named(h, "floor"))].first_triangle);

@@ -28,6 +28,7 @@ std::unique_ptr<OneShot> shoot_lamp_once(SolverOptions o) {
   r->h = build_hierarchy(d);
   r->vis = make_visibility_backend(BackendKind::Embree, r->h);
   o.max_shots = 1;
+  o.max_size = 1e6f;  // no initial mesh: every midpoint here comes from the shot's refinement
   r->s = make_solver_state(r->h, o);
   solve(r->s, *r->vis);
   return r;
