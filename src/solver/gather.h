@@ -16,6 +16,7 @@ struct GatherScratch {
   std::vector<uint8_t> blocked;
   std::vector<float> weight;
   std::vector<uint32_t> active;
+  std::vector<uint8_t> coarse_visible;
   SolverStats stats;
 };
 

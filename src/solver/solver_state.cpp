@@ -78,6 +78,8 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   if (!(s.radiosity_scale > 0.0f)) s.radiosity_scale = 1.0f;
   s.shadow_offset = shadow_offset(h.bounds);
   s.sample_barycentrics = regular_sample_barycentrics(options.sample_grid);
+  s.fine_barycentrics = regular_sample_barycentrics(4 * options.sample_grid);
+  s.fine_parent = nearest_samples(s.fine_barycentrics, s.sample_barycentrics);
   return s;
 }
 

@@ -52,6 +52,8 @@ struct SolverState {
   float max_size = 0.0f;         // largest element edge of the initial mesh
   float shadow_offset = 0.0f;
   std::vector<Vec3> sample_barycentrics;  // where a source is sampled, in its own barycentrics
+  std::vector<Vec3> fine_barycentrics;    // the near-field samples (4x finer grid)
+  std::vector<uint32_t> fine_parent;      // the coarse sample whose cell holds each fine one
   /// Every shot so far, in order. New vertices made by refinement gather the major ones again;
   /// vertices made by a forced subdivision gather them all, so their radiosity is exact.
   std::vector<ShotSource> shot_log;
