@@ -6,7 +6,7 @@ BUILD="${RAD_BUILD_DIR:-$ROOT/build}"
 
 rad_packages=(g++ cmake ninja-build pkg-config libembree-dev libtbb-dev libglm-dev libgtest-dev
   libgmock-dev libbenchmark-dev libcli11-dev libfmt-dev nlohmann-json3-dev libstb-dev
-  libtinyexr-dev libtinygltf-dev)
+  libtinyexr-dev libtinygltf-dev libcpp-httplib-dev)
 
 rad_install_missing() {
   local missing=()
@@ -36,5 +36,26 @@ rad_install_node_tools() {
   if command -v npm >/dev/null 2>&1 && [ ! -d "$BUILD/npm/node_modules/gltf-validator" ]; then
     npm install --prefix "$BUILD/npm" --no-audit --no-fund --loglevel=error \
       gltf-validator@2.0.0-dev.3.10 >/dev/null || echo "warning: could not install gltf-validator"
+  fi
+}
+
+# rad serve's front end and its browser test: three.js, lil-gui and playwright-core from npm
+# (exact versions in tools/e2e/package.json) under build/web, where rad looks for them (web/
+# node_modules beside the rad executable), and Debian's Chromium for the end-to-end test. Not
+# fatal: rad serve says what is missing, and the browser test skips.
+rad_install_web() {
+  rad_install_missing libcpp-httplib-dev || echo "warning: could not install libcpp-httplib-dev"
+  command -v npm >/dev/null 2>&1 || rad_install_missing nodejs npm || true
+  [ -x /usr/bin/chromium ] || rad_install_missing chromium || echo "warning: could not install chromium"
+  command -v npm >/dev/null 2>&1 || { echo "warning: npm missing: rad serve has no page"; return 0; }
+  local web="$BUILD/web"
+  if ! cmp -s "$ROOT/tools/e2e/package.json" "$web/package.json" ||
+      [ ! -f "$web/node_modules/three/build/three.module.js" ] ||
+      [ ! -f "$web/node_modules/lil-gui/dist/lil-gui.esm.min.js" ] ||
+      [ ! -d "$web/node_modules/playwright-core" ]; then
+    mkdir -p "$web"
+    cp "$ROOT/tools/e2e/package.json" "$web/package.json"
+    npm install --prefix "$web" --no-audit --no-fund --loglevel=error >/dev/null ||
+      echo "warning: could not install three, lil-gui and playwright-core"
   fi
 }

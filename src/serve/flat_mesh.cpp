@@ -1,0 +1,68 @@
+#include "serve/flat_mesh.h"
+
+namespace rad {
+
+std::shared_ptr<const SnapshotGeometry> FlatMesh::update(const SolverState& s, bool* changed) {
+  const std::vector<PolygonMesh>& polys = s.mesh.polygons;
+  bool any = !geometry_ || polygons_.size() != polys.size();
+  polygons_.resize(polys.size());
+  for (size_t p = 0; p < polys.size(); ++p) {
+    Polygon& c = polygons_[p];
+    // Elements are only ever added (split into four), so unchanged counts mean unchanged faces.
+    if (c.vertices == polys[p].vertex_count() && c.elements == polys[p].elements.size()) continue;
+    c.vertices = polys[p].vertex_count();
+    c.elements = polys[p].elements.size();
+    c.faces = triangulate_leaves(polys[p]);
+    any = true;
+  }
+  *changed = any;
+  if (!any) return geometry_;
+  auto g = std::make_shared<SnapshotGeometry>();
+  size_t nv = 0, ni = 0;
+  for (const Polygon& c : polygons_) {
+    nv += c.vertices + c.faces.centroids.size();
+    ni += c.faces.triangles.size();
+  }
+  g->position.reserve(nv);
+  g->indices.reserve(ni);
+  g->face_polygon.reserve(ni / 3);
+  for (size_t p = 0; p < polys.size(); ++p) {
+    const PolygonMesh& m = polys[p];
+    const PolygonFaces& f = polygons_[p].faces;
+    const uint32_t base = uint32_t(g->position.size());
+    g->position.insert(g->position.end(), m.position.begin(), m.position.end());
+    for (const auto& k : f.centroids) {
+      g->position.push_back((m.position[k[0]] + m.position[k[1]] + m.position[k[2]]) / 3.0f);
+    }
+    for (uint32_t i : f.triangles) g->indices.push_back(base + i);
+    g->face_polygon.insert(g->face_polygon.end(), f.triangles.size() / 3, int32_t(p));
+  }
+  geometry_ = std::move(g);
+  return geometry_;
+}
+
+void FlatMesh::values(const SolverState& s, Vec3 ambient, std::vector<Vec3>& radiosity,
+                      std::vector<Vec3>& display) const {
+  radiosity.clear();
+  display.clear();
+  if (geometry_) radiosity.reserve(geometry_->position.size());
+  if (geometry_) display.reserve(geometry_->position.size());
+  for (size_t p = 0; p < polygons_.size(); ++p) {
+    const size_t first = radiosity.size();
+    const uint32_t n = uint32_t(polygons_[p].vertices);
+    for (uint32_t v = 0; v < n; ++v) radiosity.push_back(s.radiosity(p, v));
+    for (const auto& k : polygons_[p].faces.centroids) {
+      radiosity.push_back((s.radiosity(p, k[0]) + s.radiosity(p, k[1]) + s.radiosity(p, k[2])) /
+                          3.0f);
+    }
+    const Vec3 lift = s.material_of(p).reflectance * ambient;
+    for (size_t v = first; v < radiosity.size(); ++v) display.push_back(radiosity[v] + lift);
+  }
+}
+
+void FlatMesh::reset() {
+  polygons_.clear();
+  geometry_.reset();
+}
+
+}  // namespace rad

@@ -1,0 +1,308 @@
+#include "serve/session.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "export/exposure.h"
+#include "solver/edits.h"
+#include "solver/solver.h"
+
+namespace rad {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_between(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+
+constexpr size_t kHistoryPoints = 256;
+constexpr float kMaxStops = 20.0f;
+
+}  // namespace
+
+Session::Session(const Hierarchy& h, const VisibilityBackend& vis, const SessionOptions& o)
+    : h_(h), vis_(vis), options_(o), state_(make_solver_state(h, o.solver)) {
+  original_controls_.reserve(h.objects.size());
+  for (const SceneObject& obj : h.objects) original_controls_.push_back(to_controls(obj.material));
+  controls_ = original_controls_;
+  requested_controls_ = original_controls_;
+  exposure_stops_ = o.exposure;
+  last_publish_ = rate_mark_time_ = Clock::now();
+  publish();
+}
+
+Session::~Session() { stop(); }
+
+void Session::start() {
+  std::lock_guard lock(mutex_);
+  if (started_ || stopping_) return;
+  started_ = true;
+  thread_ = std::thread([this] { run(); });
+}
+
+void Session::stop() {
+  {
+    std::lock_guard lock(snapshot_mutex_);
+    stopped_ = true;
+  }
+  snapshot_changed_.notify_all();
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+  }
+  wake_.notify_all();
+  if (thread_.joinable()) thread_.join();
+}
+
+bool Session::stopped() const { return stopped_; }
+
+bool Session::enqueue(Edit e) {
+  if (queue_.size() >= options_.max_pending_edits) return false;
+  queue_.push_back(std::move(e));
+  wake_.notify_one();
+  return true;
+}
+
+bool Session::edit_material(int32_t object, const MaterialPatch& patch) {
+  if (object < 0 || size_t(object) >= h_.objects.size() ||
+      h_.objects[size_t(object)].kind != ObjectKind::Pure) {
+    throw Error(fmt::format("object {} is not a Pure", object));
+  }
+  std::lock_guard lock(mutex_);
+  const MaterialControls c = apply_patch(requested_controls_[size_t(object)], patch);
+  if (auto why = controls_error(c)) throw Error(*why);
+  for (Edit& e : queue_) {
+    if (auto* m = std::get_if<MaterialEdit>(&e); m && m->object == object) {
+      m->controls = c;
+      requested_controls_[size_t(object)] = c;
+      wake_.notify_one();
+      return true;
+    }
+  }
+  if (!enqueue(MaterialEdit{object, c})) return false;
+  requested_controls_[size_t(object)] = c;
+  return true;
+}
+
+bool Session::subdivide(int32_t polygon) {
+  if (polygon < 0 || size_t(polygon) >= h_.triangles.size()) {
+    throw Error(
+        fmt::format("polygon {} does not exist (the scene has {})", polygon, h_.triangles.size()));
+  }
+  std::lock_guard lock(mutex_);
+  return enqueue(SubdivideEdit{polygon});
+}
+
+bool Session::pause() {
+  std::lock_guard lock(mutex_);
+  return enqueue(PauseEdit{true});
+}
+
+bool Session::resume() {
+  std::lock_guard lock(mutex_);
+  return enqueue(PauseEdit{false});
+}
+
+bool Session::restart(bool original_materials) {
+  std::lock_guard lock(mutex_);
+  if (!enqueue(RestartEdit{original_materials})) return false;
+  if (original_materials) requested_controls_ = original_controls_;
+  return true;
+}
+
+bool Session::set_exposure(std::optional<float> stops, bool refit) {
+  if (stops && !(std::abs(*stops) <= kMaxStops)) {
+    throw Error(
+        fmt::format("exposure is {} stops; it must be in [-{}, {}]", *stops, kMaxStops, kMaxStops));
+  }
+  std::lock_guard lock(mutex_);
+  return enqueue(ExposureEdit{stops, refit});
+}
+
+std::shared_ptr<const Snapshot> Session::snapshot() const {
+  std::lock_guard lock(snapshot_mutex_);
+  return snapshot_;
+}
+
+std::shared_ptr<const Snapshot> Session::wait_for_snapshot(
+    uint64_t version, std::chrono::milliseconds timeout) const {
+  std::unique_lock lock(snapshot_mutex_);
+  snapshot_changed_.wait_for(lock, timeout,
+                             [&] { return snapshot_->version > version || stopped_; });
+  return snapshot_;
+}
+
+bool Session::finished() const {
+  const SolverOptions& o = state_.options;
+  return nothing_to_shoot_ || (o.max_shots >= 0 && state_.shots >= o.max_shots) ||
+         state_.unshot_fraction() <= o.converge;
+}
+
+void Session::run() {
+  bool dirty = false;  // shots since the last snapshot
+  for (;;) {
+    const bool idle = paused_ || finished();
+    if (idle && dirty) {
+      publish();
+      dirty = false;
+    }
+    std::vector<Edit> edits;
+    {
+      std::unique_lock lock(mutex_);
+      if (idle) wake_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+      if (stopping_) break;
+      edits.swap(queue_);
+    }
+    if (!edits.empty()) {
+      for (const Edit& e : edits) apply(e);
+      publish();
+      dirty = false;
+      continue;
+    }
+    const auto t = Clock::now();
+    if (!step(state_, vis_)) nothing_to_shoot_ = true;
+    solve_seconds_ += seconds_between(t, Clock::now());
+    dirty = true;
+    // Snapshots of a large mesh take time: at most a fifth of the solver thread goes to them.
+    const double interval = std::max(options_.publish_interval, 4.0 * publish_seconds_);
+    if (seconds_between(last_publish_, Clock::now()) >= interval) {
+      publish();
+      dirty = false;
+    }
+  }
+  publish();  // Stopped
+}
+
+void Session::apply(const Edit& edit) {
+  try {
+    if (const auto* m = std::get_if<MaterialEdit>(&edit)) {
+      // The exposure the user was looking at stays, so the edit shows as brighter or darker.
+      exposure_locked_ = true;
+      rad::set_material(state_, m->object, to_material(m->controls), vis_);
+      controls_[size_t(m->object)] = m->controls;
+      nothing_to_shoot_ = false;
+      notice_ = fmt::format(
+          "'{}': colour ({:.3g}, {:.3g}, {:.3g}), reflectivity {:.3g}, "
+          "emission {:.4g}",
+          h_.objects[size_t(m->object)].name, m->controls.colour.x, m->controls.colour.y,
+          m->controls.colour.z, m->controls.reflectivity, m->controls.emission);
+    } else if (const auto* s = std::get_if<SubdivideEdit>(&edit)) {
+      const size_t n = force_subdivide(state_, s->polygon, vis_);
+      nothing_to_shoot_ = false;
+      const std::string& name = h_.objects[size_t(h_.triangles.object[size_t(s->polygon)])].name;
+      notice_ =
+          n > 0
+              ? fmt::format("polygon {} of '{}': {} new exact vertices", s->polygon, name, n)
+              : fmt::format("polygon {} of '{}' is already at the minimum size", s->polygon, name);
+    } else if (const auto* p = std::get_if<PauseEdit>(&edit)) {
+      paused_ = p->pause;
+      notice_ = paused_ ? "paused" : "resumed";
+    } else if (const auto* r = std::get_if<RestartEdit>(&edit)) {
+      state_ = make_solver_state(h_, options_.solver);
+      flat_.reset();
+      if (r->original_materials) controls_ = original_controls_;
+      // A fresh state holds the scene's materials: re-apply the edited ones before any shot
+      // (emission changes become the initial unshot radiosity, exactly).
+      for (size_t o = 0; o < h_.objects.size(); ++o) {
+        if (h_.objects[o].kind == ObjectKind::Pure && !(controls_[o] == original_controls_[o])) {
+          rad::set_material(state_, int32_t(o), to_material(controls_[o]), vis_);
+        }
+      }
+      nothing_to_shoot_ = false;
+      exposure_locked_ = false;
+      solve_seconds_ = 0.0;
+      rate_mark_rays_ = 0;
+      rate_mark_time_ = Clock::now();
+      notice_ = r->original_materials ? "restarted with the scene's materials"
+                                      : "restarted with the current materials";
+    } else if (const auto* x = std::get_if<ExposureEdit>(&edit)) {
+      if (x->stops) exposure_stops_ = *x->stops;
+      if (x->refit) exposure_locked_ = false;  // refitted by the next publish, then locked
+      if (x->refit) refit_pending_ = true;
+      notice_ = fmt::format("exposure {:+.2g} stops{}", exposure_stops_,
+                            x->refit ? ", refitted to the current solution" : "");
+    }
+  } catch (const std::exception& e) {
+    notice_ = fmt::format("edit failed: {}", e.what());
+  }
+}
+
+void Session::publish() {
+  const auto start = Clock::now();
+  auto snap = std::make_shared<Snapshot>();
+  bool geometry_changed = false;
+  snap->geometry = flat_.update(state_, &geometry_changed);
+  if (geometry_changed) ++mesh_version_;
+  flat_.values(state_, options_.ambient ? ambient_radiosity(state_) : Vec3(0.0f), snap->radiosity,
+               snap->display);
+  bool stop_requested = false;
+  {
+    std::lock_guard lock(mutex_);
+    stop_requested = stopping_;
+  }
+  const bool done = finished();
+  snap->status = stop_requested ? SessionStatus::Stopped
+                 : paused_      ? SessionStatus::Paused
+                 : done         ? SessionStatus::Converged
+                                : SessionStatus::Running;
+  if (!exposure_locked_) {
+    OutputMesh shown;  // scene_tone_map reads only the displayed values
+    shown.display = std::move(snap->display);
+    base_scale_ = scene_tone_map(state_, shown, options_.curve, 0.0f).scale;
+    snap->display = std::move(shown.display);
+    // Fixed from the first convergence (or a refit) on, so later edits show as they are.
+    if (done || refit_pending_) exposure_locked_ = true;
+    refit_pending_ = false;
+  }
+  snap->tone.curve = options_.curve;
+  snap->tone.scale = base_scale_ * std::exp2(exposure_stops_);
+  snap->exposure_stops = exposure_stops_;
+  snap->exposure_locked = exposure_locked_;
+
+  const auto now = Clock::now();
+  const uint64_t rays = state_.stats.rays.rays;
+  if (snap->status != SessionStatus::Running) {
+    rays_per_second_ = 0.0;
+    rate_mark_time_ = now;
+    rate_mark_rays_ = rays;
+  } else if (const double dt = seconds_between(rate_mark_time_, now); dt >= 0.5) {
+    rays_per_second_ = double(rays - rate_mark_rays_) / dt;
+    rate_mark_time_ = now;
+    rate_mark_rays_ = rays;
+  }
+
+  snap->version = ++version_;
+  snap->mesh_version = mesh_version_;
+  snap->shots = state_.shots;
+  snap->unshot_fraction = state_.unshot_fraction();
+  snap->rays_per_second = rays_per_second_;
+  snap->seconds = solve_seconds_;
+  snap->build_seconds = publish_seconds_;
+  snap->colour.resize(snap->display.size());
+  for (size_t i = 0; i < snap->display.size(); ++i) {
+    snap->colour[i] = tone_map(snap->display[i], snap->tone);
+  }
+  const std::vector<int64_t> elements = elements_per_object(state_);
+  snap->objects.resize(h_.objects.size());
+  for (size_t o = 0; o < h_.objects.size(); ++o) {
+    snap->objects[o].elements = elements[o];
+    snap->objects[o].controls = controls_[o];
+  }
+  snap->elements = 0;
+  for (int32_t r : h_.roots) snap->elements += elements[size_t(r)];
+  snap->history = thin_history(state_.history, kHistoryPoints);
+  snap->notice = notice_;
+
+  {
+    std::lock_guard lock(snapshot_mutex_);
+    snapshot_ = std::move(snap);
+  }
+  snapshot_changed_.notify_all();
+  last_publish_ = Clock::now();
+  publish_seconds_ = seconds_between(start, last_publish_);
+}
+
+}  // namespace rad

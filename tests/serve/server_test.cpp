@@ -1,0 +1,238 @@
+// The HTTP server over a running session: the page's fixed files only, 400s with a JSON message
+// for bad input, binary buffers that agree with the status, events, exports, and clients that
+// vanish mid-stream.
+#include "serve/server.h"
+
+#include <gtest/gtest.h>
+#include <httplib.h>
+
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "serve/responses.h"
+#include "serve_scene.h"
+
+namespace rad {
+namespace {
+
+using namespace std::chrono_literals;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+// Stand-ins for the npm modules: the server only needs the files to exist.
+std::string fake_modules() {
+  const fs::path root = fs::path(RAD_BINARY_DIR) / "tests" / "serve" / "fake_node_modules";
+  for (const char* f :
+       {"three/build/three.module.js", "three/build/three.core.js",
+        "three/examples/jsm/controls/OrbitControls.js", "lil-gui/dist/lil-gui.esm.min.js"}) {
+    fs::create_directories((root / f).parent_path());
+    std::ofstream(root / f) << "// stand-in for " << f << "\n";
+  }
+  return root.string();
+}
+
+class ServerTest : public ::testing::Test {
+ protected:
+  ServerTest()
+      : h(build_hierarchy(testing::serve_scene())),
+        vis(make_visibility_backend(BackendKind::Embree, h)) {
+    SessionOptions o;
+    o.solver = testing::serve_options();
+    session = std::make_unique<Session>(h, *vis, o);
+    server = std::make_unique<Server>(*session, load_web_assets(fake_modules()),
+                                      ServerOptions{"127.0.0.1", 0, 4});
+    port = server->bind();
+    session->start();
+    server->start();
+    client = std::make_unique<httplib::Client>("127.0.0.1", port);
+    client->set_read_timeout(10, 0);
+  }
+  ~ServerTest() override {
+    server->stop();
+    session->stop();
+  }
+  httplib::Result post(const std::string& path, const std::string& body,
+                       const char* type = "application/json") {
+    return client->Post(path.c_str(), body, type);
+  }
+  static std::string error_of(const httplib::Result& r) {
+    return json::parse(r->body).at("error").get<std::string>();
+  }
+  int32_t id(const std::string& name) const { return testing::object_named(h, name); }
+
+  const Hierarchy h;
+  const std::unique_ptr<VisibilityBackend> vis;
+  std::unique_ptr<Session> session;
+  std::unique_ptr<Server> server;
+  std::unique_ptr<httplib::Client> client;
+  int port = 0;
+};
+
+TEST_F(ServerTest, ServesThePageAndNothingElse) {
+  auto r = client->Get("/");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200);
+  EXPECT_NE(r->body.find("<canvas id=\"canvas\""), std::string::npos);
+  EXPECT_EQ(r->get_header_value("Content-Type"), "text/html; charset=utf-8");
+  r = client->Get("/vendor/three.module.js");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200);
+  EXPECT_EQ(r->body, "// stand-in for three/build/three.module.js\n");
+  for (const char* path : {"/../../etc/passwd", "/vendor/../../../etc/passwd",
+                           "/%2e%2e/%2e%2e/etc/passwd", "/vendor/three/package.json", "/app.js.map",
+                           "/CMakeLists.txt", "/vendor/", "/api/nothing"}) {
+    r = client->Get(path);
+    ASSERT_TRUE(r) << path;
+    EXPECT_EQ(r->status, 404) << path;
+    EXPECT_EQ(error_of(r), "not found") << path;
+  }
+}
+
+TEST_F(ServerTest, BadEditsGet400WithAMessage) {
+  auto r = post("/api/material", "{\"object\": ");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(error_of(r), "malformed JSON");
+  r = post("/api/material", R"({"object": 1000, "emission": 1})");
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(error_of(r), "'object' is 1000; it must be in [0, 8]");
+  r = post("/api/material", json{{"object", id("lamp")}, {"reflectivity", 3}}.dump());
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(error_of(r), "'reflectivity' is 3; it must be in [0, 1]");
+  r = post("/api/subdivide", R"({"polygon": -4})");
+  EXPECT_EQ(r->status, 400);
+  r = post("/api/pause", "{}", "text/plain");
+  EXPECT_EQ(r->status, 415) << "a form on another site cannot send edits";
+  r = post("/api/material", std::string(100 * 1024, ' '));
+  EXPECT_EQ(r->status, 413);
+  r = client->Get("/api/export.png?size=1x1");
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(error_of(r), "size: expected WxH, 16 to 4096 pixels each, got '1x1'");
+  // Still alive and well.
+  r = client->Get("/api/status");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200);
+}
+
+TEST_F(ServerTest, RefusesRequestsForOtherHosts) {
+  auto r = client->Get("/api/status", {{"Host", "evil.example:80"}});
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 403);
+  r = client->Get("/api/status", {{"Host", "localhost:" + std::to_string(port)}});
+  EXPECT_EQ(r->status, 200);
+}
+
+TEST_F(ServerTest, EditsAreQueuedAndShowInTheStatus) {
+  auto r = post("/api/material", json{{"object", id("lamp")}, {"emission", 7.5}}.dump());
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 202);
+  const auto deadline = std::chrono::steady_clock::now() + 30s;
+  double emission = 0;
+  while (std::chrono::steady_clock::now() < deadline) {
+    const json st = json::parse(client->Get("/api/status")->body);
+    emission = st["objects"][size_t(id("lamp"))]["emission"].get<double>();
+    if (emission == 7.5) break;
+    std::this_thread::sleep_for(20ms);
+  }
+  EXPECT_EQ(emission, 7.5);
+}
+
+TEST_F(ServerTest, MeshAndColourBuffersAgreeWithEachOther) {
+  const auto mesh = client->Get("/api/mesh");
+  ASSERT_TRUE(mesh);
+  ASSERT_GE(mesh->body.size(), 32u);
+  uint32_t hdr[8];
+  std::memcpy(hdr, mesh->body.data(), sizeof hdr);
+  EXPECT_EQ(hdr[0], kMeshMagic);
+  const size_t n = hdr[3], ni = hdr[4];
+  ASSERT_GT(n, 0u);
+  EXPECT_EQ(mesh->body.size(), 32 + 24 * n + 4 * ni + 4 * (ni / 3));
+  std::vector<uint32_t> indices(ni);
+  std::memcpy(indices.data(), mesh->body.data() + 32 + 24 * n, 4 * ni);
+  for (uint32_t i : indices) ASSERT_LT(i, n);
+  const auto colours = client->Get("/api/colours");
+  ASSERT_TRUE(colours);
+  std::memcpy(hdr, colours->body.data(), sizeof hdr);
+  EXPECT_EQ(hdr[0], kColourMagic);
+  EXPECT_EQ(colours->body.size(), 32 + 12 * size_t(hdr[3]));
+}
+
+TEST_F(ServerTest, ExportsTheCurrentSnapshot) {
+  auto r = client->Get("/api/export.ply");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200);
+  EXPECT_EQ(r->body.rfind("ply\n", 0), 0u);
+  EXPECT_NE(r->get_header_value("Content-Disposition").find("serve_test_box-shot"),
+            std::string::npos);
+  r = client->Get("/api/export.png?size=64x48&camera=0.5,0.5,-2,0.5,0.5,0.5");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200);
+  EXPECT_EQ(r->body.substr(1, 3), "PNG");
+  r = client->Get("/api/export.glb");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->body.substr(0, 4), "glTF");
+}
+
+TEST_F(ServerTest, StreamsEventsAndForgetsClientsThatLeave) {
+  std::string received;
+  // Read until the first snapshot event, then hang up.
+  auto r = client->Get("/api/events", [&](const char* data, size_t n) {
+    received.append(data, n);
+    return received.find("event: snapshot") == std::string::npos ||
+           received.find("\n\n", received.find("event: snapshot")) == std::string::npos;
+  });
+  EXPECT_NE(received.find("retry: 1000"), std::string::npos);
+  const size_t at = received.find("data: ");
+  ASSERT_NE(at, std::string::npos);
+  const json st = json::parse(received.substr(at + 6, received.find('\n', at) - at - 6));
+  EXPECT_TRUE(st.contains("unshot_fraction"));
+  // Many clients that vanish mid-stream leave the server answering.
+  for (int i = 0; i < 12; ++i) {
+    httplib::Client c("127.0.0.1", port);
+    c.Get("/api/events", [](const char*, size_t) { return false; });
+  }
+  const auto t = std::chrono::steady_clock::now();
+  auto status = client->Get("/api/status");
+  ASSERT_TRUE(status);
+  EXPECT_EQ(status->status, 200);
+  EXPECT_LT(std::chrono::steady_clock::now() - t, 3s);
+}
+
+TEST_F(ServerTest, StopsPromptlyWithAnOpenEventStream) {
+  std::thread listener([&] {
+    httplib::Client c("127.0.0.1", port);
+    c.set_read_timeout(30, 0);
+    c.Get("/api/events", [](const char*, size_t) { return true; });
+  });
+  std::this_thread::sleep_for(300ms);
+  const auto t = std::chrono::steady_clock::now();
+  server->stop();
+  EXPECT_LT(std::chrono::steady_clock::now() - t, 3s);
+  listener.join();
+}
+
+TEST(WebAssets, SaysWhatIsMissingAndHowToInstallIt) {
+  try {
+    load_web_assets("/nonexistent/node_modules");
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("/nonexistent/node_modules/three/build/three.module.js"), std::string::npos);
+    EXPECT_NE(m.find("rad_install_web"), std::string::npos);
+  }
+}
+
+TEST(LoopbackHost, KnowsTheLoopbackNames) {
+  EXPECT_TRUE(is_loopback_host("127.0.0.1"));
+  EXPECT_TRUE(is_loopback_host("localhost"));
+  EXPECT_TRUE(is_loopback_host("::1"));
+  EXPECT_FALSE(is_loopback_host("0.0.0.0"));
+  EXPECT_FALSE(is_loopback_host("192.168.1.2"));
+}
+
+}  // namespace
+}  // namespace rad
