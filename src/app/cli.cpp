@@ -19,19 +19,38 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
     if (a == "-minsize") a = "--min-size";
     args.push_back(a);
   }
+  CommandLine c;
+  c.serve = !args.empty() && args.front() == "serve";
+  if (c.serve) args.erase(args.begin());
   std::reverse(args.begin(), args.end());  // CLI11 parses a reversed vector
 
-  CommandLine c;
   std::string backend = "embree", method = "analytic", tonemap = "clamp";
   int samples = 16;
   CLI::App app{
       "rad: diffuse interreflection (radiosity) by progressive shooting with ray-traced\n"
       "vertex-to-source form factors and adaptive subdivision.\n\n"
       "  rad [options] SCENE.des OUTPUT.ply      solve and write every vertex's colour\n"
-      "  rad --check SCENE.des                   parse, validate and summarise only\n",
+      "  rad --check SCENE.des                   parse, validate and summarise only\n"
+      "  rad serve SCENE.des [--port P] [--host H] [--output FILE]\n"
+      "                                          solve in the background and watch, edit and\n"
+      "                                          export it in a browser (loopback by default);\n"
+      "                                          Ctrl-C stops and writes --output/--image\n",
       "rad"};
-  app.add_option("scene", c.scene, "Scene description file")->required();
-  app.add_option("output", c.output, "Output mesh (.ply, .off, .obj, .gltf or .glb)");
+  if (c.serve) {
+    app.add_option("scene", c.scene, "Scene description file")->required();
+    app.add_option("--port", c.port, "rad serve: TCP port (0: any free port)")
+        ->check(CLI::Range(0, 65535))
+        ->capture_default_str();
+    app.add_option("--host", c.host,
+                   "rad serve: address to listen on (other than loopback exposes the scene and "
+                   "its edits to the network)")
+        ->capture_default_str();
+    app.add_option("--output", c.output,
+                   "rad serve: mesh written when the server stops (.ply, .off, .obj, .gltf, .glb)");
+  } else {
+    app.add_option("scene", c.scene, "Scene description file")->required();
+    app.add_option("output", c.output, "Output mesh (.ply, .off, .obj, .gltf or .glb)");
+  }
   app.add_flag("--check", c.check, "Parse and validate the scene, print a summary, do not solve");
   app.add_option("--backend", backend, "Shadow-ray backend: embree, grid or brute")
       ->capture_default_str();
@@ -104,7 +123,7 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
       throw CLI::ValidationError("--samples", "must be a square number (1, 4, 9, 16, ...)");
     }
     c.solver.sample_grid = m;
-    if (!c.check && c.output.empty()) {
+    if (!c.check && !c.serve && c.output.empty()) {
       throw CLI::RequiredError("output (or --check)");
     }
   } catch (const CLI::ParseError& e) {

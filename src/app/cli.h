@@ -29,6 +29,10 @@ struct CommandLine {
   int image_width = 800, image_height = 800;  // --size WxH
   std::string stats_json;
   bool quiet = false;
+  // rad serve SCENE [--port P] [--host H]: the interactive mode (output: --output, optional).
+  bool serve = false;
+  std::string host = "127.0.0.1";
+  int port = 8080;
 };
 
 /// Parses argv. Accepts the original's single-dash flags (-noshadows, -minsize F). Returns

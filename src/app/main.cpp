@@ -18,6 +18,7 @@
 #include "export/output_mesh.h"
 #include "hierarchy/hierarchy.h"
 #include "scene/parser.h"
+#include "serve/run_serve.h"
 #include "solver/solver.h"
 #include "visibility/backend.h"
 
@@ -26,8 +27,31 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
+rad::ServeConfig serve_config(const rad::CommandLine& cmd) {
+  rad::ServeConfig c;
+  c.scene = cmd.scene;
+  c.server.host = cmd.host;
+  c.server.port = cmd.port;
+  c.session.solver = cmd.solver;
+  c.session.ambient = cmd.ambient;
+  c.session.curve = cmd.tonemap;
+  c.session.exposure = cmd.exposure;
+  c.backend = cmd.backend;
+  c.packets = cmd.packets;
+  c.threads = cmd.threads;
+  c.output = cmd.output;
+  c.images = cmd.images;
+  c.camera = cmd.camera;
+  c.image_width = cmd.image_width;
+  c.image_height = cmd.image_height;
+  c.ascii = cmd.ascii;
+  c.quiet = cmd.quiet;
+  return c;
+}
+
 int run(const rad::CommandLine& cmd) {
   using namespace rad;
+  if (cmd.serve) return run_serve(serve_config(cmd));
   const auto start = Clock::now();
   Progress progress(cmd.quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);
   // Stages go to stdout as the original printed them; the progress bar lives on stderr.
