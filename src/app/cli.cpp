@@ -20,6 +20,8 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
     args.push_back(a);
   }
   CommandLine c;
+  c.batch = !args.empty() && args.front() == "batch";
+  if (c.batch) args.erase(args.begin());
   c.serve = !args.empty() && args.front() == "serve";
   if (c.serve) args.erase(args.begin());
   std::reverse(args.begin(), args.end());  // CLI11 parses a reversed vector
@@ -31,12 +33,24 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
       "vertex-to-source form factors and adaptive subdivision.\n\n"
       "  rad [options] SCENE.des OUTPUT.ply      solve and write every vertex's colour\n"
       "  rad --check SCENE.des                   parse, validate and summarise only\n"
+      "  rad batch OUTDIR SCENE... [options]     solve many scenes (SCENE may be a .txt list\n"
+      "                                          of .des files); outputs and stats in OUTDIR\n"
       "  rad serve SCENE.des [--port P] [--host H] [--output FILE]\n"
       "                                          solve in the background and watch, edit and\n"
       "                                          export it in a browser (loopback by default);\n"
       "                                          Ctrl-C stops and writes --output/--image\n",
       "rad"};
-  if (c.serve) {
+  std::string formats = "ply,png";
+  if (c.batch) {
+    app.add_option("outdir", c.batch_dir, "Folder for every scene's outputs and stats")
+        ->required();
+    app.add_option("scenes", c.batch_scenes, "Scene files, or .txt files listing them")
+        ->required();
+    app.add_option("--formats", formats,
+                   "Outputs per scene, by extension: mesh (ply, off, obj, gltf, glb) and image "
+                   "(png, hdr, exr, pfm)")
+        ->capture_default_str();
+  } else if (c.serve) {
     app.add_option("scene", c.scene, "Scene description file")->required();
     app.add_option("--port", c.port, "rad serve: TCP port (0: any free port)")
         ->check(CLI::Range(0, 65535))
@@ -123,8 +137,14 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
       throw CLI::ValidationError("--samples", "must be a square number (1, 4, 9, 16, ...)");
     }
     c.solver.sample_grid = m;
-    if (!c.check && !c.serve && c.output.empty()) {
-      throw CLI::RequiredError("output (or --check)");
+    c.batch_formats.clear();
+    for (size_t at = 0; at <= formats.size();) {
+      const size_t comma = std::min(formats.find(',', at), formats.size());
+      if (comma > at) c.batch_formats.push_back(formats.substr(at, comma - at));
+      at = comma + 1;
+    }
+    if (!c.check && !c.batch && !c.serve && c.output.empty() && c.images.empty()) {
+      throw CLI::RequiredError("output (or --image, or --check)");
     }
   } catch (const CLI::ParseError& e) {
     *exit_code = app.exit(e);

@@ -29,6 +29,11 @@ struct CommandLine {
   int image_width = 800, image_height = 800;  // --size WxH
   std::string stats_json;
   bool quiet = false;
+  // rad batch OUTDIR SCENE...: every scene solved with the same options.
+  bool batch = false;
+  std::string batch_dir;
+  std::vector<std::string> batch_scenes;       // .des files, or .txt lists of them
+  std::vector<std::string> batch_formats{"ply", "png"};  // one output per extension
   // rad serve SCENE [--port P] [--host H]: the interactive mode (output: --output, optional).
   bool serve = false;
   std::string host = "127.0.0.1";

@@ -38,8 +38,9 @@ size_t peak_memory_bytes() {
   return size_t(u.ru_maxrss) * 1024;
 }
 
-void write_stats_json(const std::string& path, const CommandLine& cmd, const SolverState& s,
-                      StopReason stop, const RunTimes& t) {
+void write_stats_json(const std::string& path, const CommandLine& cmd, const std::string& scene,
+                      const SolverState& s, StopReason stop, const RunTimes& t,
+                      const SeamReport& seams) {
   using nlohmann::json;
   const VisibilityStats& r = s.stats.rays;
   json history = json::array();
@@ -50,7 +51,7 @@ void write_stats_json(const std::string& path, const CommandLine& cmd, const Sol
   json j = {
       {"schema", "rad-stats"},
       {"version", 1},
-      {"scene", {{"path", cmd.scene}, {"name", s.hierarchy->scene_name},
+      {"scene", {{"path", scene}, {"name", s.hierarchy->scene_name},
                  {"triangles", s.hierarchy->triangles.size()}}},
       {"backend", to_string(cmd.backend)},
       {"packets", cmd.packets},
@@ -80,6 +81,11 @@ void write_stats_json(const std::string& path, const CommandLine& cmd, const Sol
       {"seconds",
        {{"parse", t.parse}, {"build", t.build}, {"solve", t.solve}, {"shoot", s.stats.shoot_seconds},
         {"refine", s.stats.refine_seconds}, {"write", t.write}, {"total", t.total}}},
+      {"seams",
+       {{"shared_edges", seams.shared_edges}, {"vertices_checked", seams.vertices_checked},
+        {"largest_jump", seams.largest_jump}, {"mean_jump", seams.mean_jump},
+        {"mean_radiosity", seams.mean_radiosity},
+        {"largest_jump_at", {seams.where.x, seams.where.y, seams.where.z}}}},
       {"peak_memory_bytes", peak_memory_bytes()},
       {"history", history},
   };

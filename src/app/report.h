@@ -4,6 +4,7 @@
 #include <string>
 
 #include "app/cli.h"
+#include "export/seams.h"
 #include "solver/solver.h"
 
 namespace rad {
@@ -17,8 +18,9 @@ struct RunTimes {
 std::string format_statistics(const SolverState& s, double elapsed_seconds);
 
 /// Writes the JSON statistics (schema "rad-stats", version 1; see README) atomically.
-void write_stats_json(const std::string& path, const CommandLine& cmd, const SolverState& s,
-                      StopReason stop, const RunTimes& times);
+void write_stats_json(const std::string& path, const CommandLine& cmd, const std::string& scene,
+                      const SolverState& s, StopReason stop, const RunTimes& times,
+                      const SeamReport& seams);
 
 /// Peak resident memory of this process, bytes (0 if unknown).
 size_t peak_memory_bytes();

@@ -119,6 +119,58 @@ TEST(CommandLine, RejectsAnUnknownBackendOrFormatBeforeWorking) {
   EXPECT_EQ(r.err.rfind("error: unknown tone curve 'sepia'", 0), 0u) << r.err;
 }
 
+// Reads a binary PLY's header; returns the vertex and face counts and checks the file size.
+bool complete_ply(const fs::path& p, size_t* vertices) {
+  const std::string data = read_file(p);
+  const size_t end = data.find("end_header\n");
+  if (end == std::string::npos) return false;
+  size_t v = 0, f = 0;
+  std::sscanf(data.c_str() + data.find("element vertex"), "element vertex %zu", &v);
+  std::sscanf(data.c_str() + data.find("element face"), "element face %zu", &f);
+  *vertices = v;
+  return data.size() == end + 11 + v * 27 + f * 13;  // 3+3 floats+3 bytes; 1 byte + 3 uints
+}
+
+TEST(CommandLine, BatchWritesTheGoodScenesAndReportsTheBrokenOne) {
+  const fs::path dir = fs::temp_directory_path() / ("rad_test_batch_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  std::string scenes;
+  int good = 0;
+  for (const auto& e : fs::directory_iterator(kScenes)) {
+    if (e.path().extension() == ".des") scenes += " " + e.path().string(), ++good;
+  }
+  const fs::path broken = kScenes / "bad" / "negative_emission.des";
+  const RadRun r = run_rad("batch " + dir.string() + scenes + " " + broken.string() +
+                           " --converge 1e-2 --size 64x64 -q");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(r.err.rfind(broken.string() + ":", 0), 0u) << r.err;
+  EXPECT_NE(r.out.find(std::to_string(good + 1) + " scenes, 1 failed"), std::string::npos) << r.out;
+  for (const auto& e : fs::directory_iterator(kScenes)) {
+    if (e.path().extension() != ".des") continue;
+    const std::string stem = e.path().stem().string();
+    size_t vertices = 0;
+    EXPECT_TRUE(complete_ply(dir / (stem + ".ply"), &vertices)) << stem;
+    EXPECT_GT(vertices, 0u);
+    EXPECT_TRUE(fs::file_size(dir / (stem + ".png")) > 0) << stem;
+    EXPECT_NE(read_file(dir / (stem + ".json")).find("\"rad-stats\""), std::string::npos);
+  }
+  for (const auto& e : fs::directory_iterator(dir)) {
+    EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
+    EXPECT_EQ(e.path().stem().string().find("negative_emission"), std::string::npos) << e.path();
+  }
+  fs::remove_all(dir);
+}
+
+TEST(CommandLine, RendersAnImageWithoutAMeshOutput) {
+  const fs::path png = fs::temp_directory_path() / "rad_test_only.png";
+  const RadRun r = run_rad("-q --size 32x32 --image " + png.string() + " " +
+                           (kScenes / "parallel_squares.des").string());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(read_file(png).rfind("\x89PNG", 0), 0u);
+  fs::remove(png);
+}
+
 TEST(CommandLine, HelpListsTheOptions) {
   const RadRun r = run_rad("--help");
   EXPECT_EQ(r.code, 0);

@@ -1,0 +1,112 @@
+#include "app/batch.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+#include <set>
+
+#include "app/scene_job.h"
+#include "core/error.h"
+#include "export/image_file.h"
+#include "export/mesh_file.h"
+
+namespace rad {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Scene paths: .txt arguments are lists (one path per line, '#' comments, relative to the list).
+std::vector<std::string> expand_scene_list(const std::vector<std::string>& args) {
+  std::vector<std::string> scenes;
+  for (const std::string& a : args) {
+    if (fs::path(a).extension() != ".txt") {
+      scenes.push_back(a);
+      continue;
+    }
+    std::ifstream in(a);
+    if (!in) throw Error(SourceLoc{a}, "cannot read the scene list");
+    std::string line;
+    while (std::getline(in, line)) {
+      line = line.substr(0, line.find('#'));
+      while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.pop_back();
+      while (!line.empty() && std::isspace(static_cast<unsigned char>(line.front()))) line.erase(0, 1);
+      if (line.empty()) continue;
+      const fs::path p(line);
+      scenes.push_back(p.is_absolute() ? line : (fs::path(a).parent_path() / p).string());
+    }
+  }
+  return scenes;
+}
+
+struct Row {
+  std::string scene, status, detail;
+  SceneJobResult result;
+};
+
+}  // namespace
+
+int run_batch(const CommandLine& cmd) {
+  // Check every format before any work, so a typo fails at once.
+  std::vector<std::string> mesh_exts, image_exts;
+  for (const std::string& f : cmd.batch_formats) {
+    const std::string name = "x." + f;
+    try {
+      check_mesh_extension(name);
+      mesh_exts.push_back(f);
+    } catch (const Error&) {
+      try {
+        check_image_extension(name);
+      } catch (const Error&) {
+        throw Error("unknown batch format '" + f + "' (mesh: ply off obj gltf glb; image: png "
+                    "hdr exr pfm)");
+      }
+      image_exts.push_back(f);
+    }
+  }
+  if (mesh_exts.size() > 1) throw Error("batch writes one mesh format per scene");
+  fs::create_directories(cmd.batch_dir);
+  const std::vector<std::string> scenes = expand_scene_list(cmd.batch_scenes);
+
+  std::vector<Row> rows;
+  std::set<std::string> used;
+  for (const std::string& scene : scenes) {
+    std::string name = fs::path(scene).stem().string();
+    for (int k = 2; !used.insert(name).second; ++k) name = fs::path(scene).stem().string() + "-" + std::to_string(k);
+    const fs::path base = fs::path(cmd.batch_dir) / name;
+    SceneJob job{scene, "", {}, base.string() + ".json"};
+    if (!mesh_exts.empty()) job.mesh_output = base.string() + "." + mesh_exts[0];
+    for (const std::string& e : image_exts) job.images.push_back(base.string() + "." + e);
+    if (!cmd.quiet) std::printf("== %s\n", scene.c_str());
+    Row row{scene, "ok", "", {}};
+    try {
+      row.result = run_scene_job(cmd, job);
+      row.detail = to_string(row.result.stop);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%s\n", e.what());
+      row.status = "FAILED";
+      row.detail = e.what();
+    }
+    rows.push_back(row);
+  }
+
+  int failed = 0;
+  std::printf("\n%-40s %-7s %7s %9s %9s  %s\n", "scene", "status", "shots", "vertices", "seconds",
+              "result");
+  for (const Row& r : rows) {
+    failed += r.status != "ok";
+    if (r.status == "ok") {
+      std::printf("%-40s %-7s %7lld %9zu %9.2f  %s\n", r.scene.c_str(), r.status.c_str(),
+                  static_cast<long long>(r.result.shots), r.result.vertices, r.result.seconds,
+                  r.detail.c_str());
+    } else {
+      std::printf("%-40s %-7s %7s %9s %9s  %s\n", r.scene.c_str(), r.status.c_str(), "-", "-", "-",
+                  r.detail.c_str());
+    }
+  }
+  std::printf("%zu scene%s, %d failed\n", rows.size(), rows.size() == 1 ? "" : "s", failed);
+  return failed ? 1 : 0;
+}
+
+}  // namespace rad

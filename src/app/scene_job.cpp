@@ -1,0 +1,101 @@
+#include "app/scene_job.h"
+
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fmt/format.h>
+#include <memory>
+
+#include "app/report.h"
+#include "core/progress.h"
+#include "export/exposure.h"
+#include "export/image_file.h"
+#include "export/image_render.h"
+#include "export/mesh_file.h"
+#include "export/output_mesh.h"
+#include "export/seams.h"
+#include "hierarchy/hierarchy.h"
+#include "mesh/patch_mesh.h"
+#include "scene/parser.h"
+#include "visibility/backend.h"
+
+namespace rad {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+}  // namespace
+
+SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job) {
+  const auto start = Clock::now();
+  Progress progress(cmd.quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);
+  // Stages go to stdout as the original printed them; the progress bar lives on stderr.
+  auto say = [&](const std::string& s) {
+    if (cmd.quiet) return;
+    std::fputs((s + "\n").c_str(), stdout);
+    std::fflush(stdout);
+  };
+  RunTimes times;
+  if (!job.mesh_output.empty()) check_mesh_extension(job.mesh_output);
+  for (const std::string& image : job.images) check_image_extension(image);
+
+  say("Reading description file...");
+  const Hierarchy hierarchy = build_hierarchy(parse_scene_file(job.scene));
+  times.parse = since(start);
+
+  say("Initializing...");
+  const int threads = cmd.threads > 0 ? cmd.threads : tbb::info::default_concurrency();
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+  auto t = Clock::now();
+  const std::unique_ptr<VisibilityBackend> visibility =
+      make_visibility_backend(cmd.backend, hierarchy, VisibilityOptions{cmd.packets});
+  SolverState state = make_solver_state(hierarchy, cmd.solver);
+  times.build = since(t);
+
+  say(fmt::format("Starting Computation ({} triangles, {} backend, {} thread{})",
+                  hierarchy.triangles.size(), to_string(cmd.backend), threads,
+                  threads == 1 ? "" : "s"));
+  t = Clock::now();
+  const double log_goal = std::log(std::max(cmd.solver.converge, 1e-12));
+  const StopReason stop = solve(state, *visibility, [&](const SolverState& s, const ShotRecord& r) {
+    const double f = r.unshot_fraction > 0 ? std::log(r.unshot_fraction) / log_goal : 1.0;
+    progress.update(f, fmt::format("shot {}  unshot {:.2e}  subdivisions {}", r.shot,
+                                   r.unshot_fraction, s.stats.subdivisions));
+  });
+  times.solve = since(t);
+  progress.finish(fmt::format("{} after {} shots", to_string(stop), state.shots));
+
+  t = Clock::now();
+  const OutputMesh mesh = make_output_mesh(state, cmd.ambient);
+  MeshFileOptions mo;
+  mo.ascii = cmd.ascii;
+  mo.tone = scene_tone_map(state, mesh, cmd.tonemap, cmd.exposure);
+  if (!job.mesh_output.empty()) {
+    say(fmt::format("Writing results in file {}", job.mesh_output));
+    write_mesh_file(job.mesh_output, mesh, mo);
+  }
+  if (!job.images.empty()) {
+    const RenderOptions ro{cmd.image_width, cmd.image_height};
+    const Camera camera = cmd.camera ? *cmd.camera
+                                     : default_camera(mesh.position, mesh.indices,
+                                                      float(ro.width) / float(ro.height));
+    const Image image = render_image(mesh.position, mesh.display, mesh.indices, camera, ro);
+    for (const std::string& path : job.images) {
+      say(fmt::format("Writing image {}", path));
+      write_image_file(path, image, mo.tone);
+    }
+  }
+  times.write = since(t);
+  times.total = since(start);
+  if (!job.stats_json.empty()) {
+    write_stats_json(job.stats_json, cmd, job.scene, state, stop, times,
+                     measure_seams(mesh, hierarchy.triangles));
+  }
+  if (!cmd.quiet) std::fputs(format_statistics(state, times.total).c_str(), stdout);
+  return {stop, state.shots, count_vertices(state.mesh), state.unshot_fraction(), times.total};
+}
+
+}  // namespace rad

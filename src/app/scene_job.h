@@ -1,0 +1,33 @@
+// One scene through the whole pipeline: parse, build, solve, write. Used by the single-scene
+// command and by batch runs.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "app/cli.h"
+#include "solver/solver.h"
+
+namespace rad {
+
+struct SceneJob {
+  std::string scene;
+  std::string mesh_output;          // empty: no mesh file
+  std::vector<std::string> images;  // rendered with the command line's camera and size
+  std::string stats_json;           // empty: none
+};
+
+struct SceneJobResult {
+  StopReason stop = StopReason::Converged;
+  int64_t shots = 0;
+  size_t vertices = 0;
+  double unshot_fraction = 0.0;
+  double seconds = 0.0;
+};
+
+/// Runs `job` with the options of `cmd`, printing the original's stage lines and statistics
+/// unless quiet. Every output is checked before solving and written atomically. Throws
+/// rad::Error on bad input.
+SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job);
+
+}  // namespace rad
