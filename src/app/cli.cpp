@@ -93,6 +93,9 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
   app.add_option("--max-shots", c.solver.max_shots,
                  "Stop after this many shots (0 writes the unlit scene: emission only)");
   app.add_option("--time-limit", c.solver.time_limit, "Stop after this many seconds");
+  app.add_flag("--overshoot", c.solver.overshoot,
+               "Overshooting (Feda & Purgathofer 1992): shooters also shoot their share of the "
+               "ambient term");
   app.add_flag("--ascii", c.ascii, "Write text PLY instead of binary");
   app.add_flag("!--no-ambient", c.ambient,
                "Display colours without Cohen's ambient term (the stored radiosity never has it)");

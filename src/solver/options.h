@@ -55,6 +55,10 @@ struct SolverOptions {
   /// lights hold most of the energy and all the sharp shadows, so this is where interpolation
   /// errors came from (measured: see README).
   double major_shot_fraction = 0.02;
+  /// Overshooting (Feda, Purgathofer 1992): each shooter also shoots its share of the ambient
+  /// term and keeps it as negative unshot radiosity. Off by default (see README for the
+  /// measured effect).
+  bool overshoot = false;
   int64_t max_shots = -1;   // < 0: no limit
   double time_limit = 0.0;  // seconds; <= 0: no limit
 };

@@ -29,14 +29,21 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   if (!shooter) return std::nullopt;
   const size_t src_id = size_t(*shooter);
 
-  ShotSource src = make_shot_source(s, *shooter, s.sample_barycentrics);
   PolygonMesh& source_mesh = s.mesh.polygons[src_id];
-  for (Vec3& u : source_mesh.unshot) u = Vec3(0.0f);
+  // Overshooting (Feda, Purgathofer 1992): also shoot what the source will get back from the
+  // ambient; its unshot radiosity becomes that much negative, shot later if still significant.
+  Vec3 over(0.0f);
+  if (s.options.overshoot) {
+    over = s.material_of(src_id).reflectance * ambient_estimate(s);
+    for (Vec3& u : source_mesh.unshot) u += over;
+  }
+  ShotSource src = make_shot_source(s, *shooter, s.sample_barycentrics);
+  for (Vec3& u : source_mesh.unshot) u = -over;
 
   src.major = s.options.major_shot_fraction > 0.0 &&
               std::abs(s.unshot_energy[src_id]) >= s.options.major_shot_fraction * s.emitted_energy;
   const bool major = src.major;
-  s.unshot_energy[src_id] = 0.0;
+  s.unshot_energy[src_id] = s.options.overshoot ? polygon_unshot_energy(source_mesh) : 0.0;
   std::vector<uint8_t> received;
   shoot_to_receivers(s, src, vis, major, received);
   const auto t1 = std::chrono::steady_clock::now();

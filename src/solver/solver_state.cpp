@@ -74,6 +74,11 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
     s.emitted_energy += s.unshot_energy[t];
     total_area += h.triangles.area[t];
   }
+  s.total_area = total_area;
+  for (size_t t = 0; t < h.triangles.size(); ++t) {
+    s.mean_reflectance += double(mean_component(s.material_of(t).reflectance)) *
+                          h.triangles.area[t] / std::max(total_area, 1e-30);
+  }
   s.radiosity_scale = total_area > 0.0 ? float(s.emitted_energy / total_area) : 1.0f;
   if (!(s.radiosity_scale > 0.0f)) s.radiosity_scale = 1.0f;
   s.shadow_offset = shadow_offset(h.bounds);
@@ -81,6 +86,13 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   s.fine_barycentrics = regular_sample_barycentrics(4 * options.sample_grid);
   s.fine_parent = nearest_samples(s.fine_barycentrics, s.sample_barycentrics);
   return s;
+}
+
+float ambient_estimate(const SolverState& s) {
+  if (s.total_area <= 0.0) return 0.0f;
+  double unshot = 0.0;
+  for (double e : s.unshot_energy) unshot += e;
+  return float(unshot / s.total_area / (1.0 - std::min(s.mean_reflectance, 0.999)));
 }
 
 Vec3 ambient_radiosity(const SolverState& s) {

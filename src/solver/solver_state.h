@@ -48,6 +48,8 @@ struct SolverState {
   double emitted_energy = 0.0;   // sum of area x mean-channel emission
   double absorbed_energy = 0.0;  // sum over shots of received energy not reflected
   float radiosity_scale = 1.0f;  // emitted power / total area: what relative limits scale by
+  double total_area = 0.0;
+  double mean_reflectance = 0.0;  // area-weighted, mean over channels
   float min_size = 0.0f;         // smallest element edge
   float max_size = 0.0f;         // largest element edge of the initial mesh
   float shadow_offset = 0.0f;
@@ -81,6 +83,10 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options);
 
 /// Unshot energy of polygon p integrated over its leaf elements (mean over channels).
 double polygon_unshot_energy(const PolygonMesh& p);
+
+/// The ambient term from the per-polygon unshot energies (mean over channels, signed): cheap
+/// enough to evaluate every shot.
+float ambient_estimate(const SolverState& s);
 
 /// Cohen et al. 1988 ambient term: the unshot energy spread over the scene and reflected
 /// 1/(1 - mean reflectance) times. For display only; never added to stored radiosity.
