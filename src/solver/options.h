@@ -34,7 +34,7 @@ struct SolverOptions {
   FormFactorMethod method = FormFactorMethod::Analytic;
   /// Subdivision limit: split an element when two of its vertices differ by more than
   /// this fraction of the radiosity scale (in any channel).
-  float subdivision_threshold = 0.02f;
+  float subdivision_threshold = 0.05f;
   MidpointRule midpoints = MidpointRule::Exact;
   /// Smallest edge length an element may reach; <= 0 derives it from the scene.
   float min_size = 0.0f;
