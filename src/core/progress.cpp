@@ -36,13 +36,6 @@ void Progress::update(double fraction, const std::string& status) {
   last_ = now;
 }
 
-void Progress::message(const std::string& text) {
-  if (mode_ == Mode::Quiet) return;
-  if (drawn_) std::fprintf(stderr, "\r\x1b[K");
-  std::fprintf(stderr, "%s\n", text.c_str());
-  drawn_ = false;
-}
-
 void Progress::finish(const std::string& status) {
   if (mode_ == Mode::Quiet) return;
   if (mode_ == Mode::Bar) {

@@ -19,8 +19,6 @@ class Progress {
   void update(double fraction, const std::string& status);
   /// Ends the bar (a newline on a terminal) and prints a final status.
   void finish(const std::string& status);
-  /// Prints a message line without breaking the bar.
-  void message(const std::string& text);
 
   bool quiet() const { return mode_ == Mode::Quiet; }
 
