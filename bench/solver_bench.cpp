@@ -166,7 +166,7 @@ std::unique_ptr<ShotCase> prepare_shot(SolverState s, const VisibilityBackend& v
   const std::optional<int32_t> shooter = choose_shooter(s);
   if (!shooter) return nullptr;
   c->index = s.shots + 1;
-  c->src = make_shot_source(s, *shooter, s.sample_barycentrics);
+  c->src = make_shot_source(s, *shooter);
   for (Vec3& u : s.mesh.polygons[size_t(*shooter)].unshot) u = Vec3(0.0f);
   c->major =
       s.options.major_shot_fraction > 0.0 && std::abs(s.unshot_energy[size_t(*shooter)]) >=

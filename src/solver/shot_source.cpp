@@ -7,7 +7,8 @@
 
 namespace rad {
 
-ShotSource make_shot_source(const SolverState& s, int32_t p, const std::vector<Vec3>& bary) {
+ShotSource make_shot_source(const SolverState& s, int32_t p) {
+  const std::vector<Vec3>& bary = s.sample_barycentrics;
   const Triangles& tris = s.hierarchy->triangles;
   const PolygonMesh& mesh = s.mesh.polygons[size_t(p)];
   ShotSource src;
@@ -24,18 +25,17 @@ ShotSource make_shot_source(const SolverState& s, int32_t p, const std::vector<V
     src.mean_unshot += src.unshot.back();
   }
   src.mean_unshot /= float(bary.size());
-  if (s.fine_barycentrics.size() > bary.size() && s.fine_parent.size() == s.fine_barycentrics.size() &&
-      bary.size() == s.sample_barycentrics.size()) {
-    // Near field: closer than two coarse sample spacings (longest edge / m).
-    float longest = 0.0f;
-    for (int k = 0; k < 3; ++k) longest = std::max(longest, glm::length(src.corner[(k + 1) % 3] - src.corner[k]));
-    src.near_distance = 2.0f * longest / float(s.options.sample_grid);
-    src.fine_area_per_sample = src.area / float(s.fine_barycentrics.size());
-    src.fine_parent = s.fine_parent;
-    for (const Vec3& w : s.fine_barycentrics) {
-      src.fine_sample.push_back(src.corner[0] * w.x + src.corner[1] * w.y + src.corner[2] * w.z);
-      src.fine_unshot.push_back(interpolate_at(mesh, mesh.unshot, w));
-    }
+  // Near field: closer than two coarse sample spacings (longest edge / m).
+  float longest = 0.0f;
+  for (int k = 0; k < 3; ++k) {
+    longest = std::max(longest, glm::length(src.corner[(k + 1) % 3] - src.corner[k]));
+  }
+  src.near_distance = 2.0f * longest / float(s.options.sample_grid);
+  src.fine_area_per_sample = src.area / float(s.fine_barycentrics.size());
+  src.fine_parent = s.fine_parent;
+  for (const Vec3& w : s.fine_barycentrics) {
+    src.fine_sample.push_back(src.corner[0] * w.x + src.corner[1] * w.y + src.corner[2] * w.z);
+    src.fine_unshot.push_back(interpolate_at(mesh, mesh.unshot, w));
   }
   return src;
 }

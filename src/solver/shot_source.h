@@ -30,8 +30,9 @@ struct ShotSource {
   std::vector<uint32_t> fine_parent;  // coarse sample of each fine one
 };
 
-/// Freezes polygon p as the source of the next shot: n = m*m regular samples (SPEC §4), each
-/// with the unshot radiosity interpolated from the vertices of the leaf element it lies in.
-ShotSource make_shot_source(const SolverState& s, int32_t p, const std::vector<Vec3>& barycentrics);
+/// Freezes polygon p as the source of the next shot: the state's n = m*m regular samples
+/// (SPEC §4) and the 16x finer near-field ones, each with the unshot radiosity interpolated from
+/// the vertices of the leaf element it lies in.
+ShotSource make_shot_source(const SolverState& s, int32_t p);
 
 }  // namespace rad

@@ -37,7 +37,7 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
     over = s.material_of(src_id).reflectance * ambient_estimate(s);
     for (Vec3& u : source_mesh.unshot) u += over;
   }
-  ShotSource src = make_shot_source(s, *shooter, s.sample_barycentrics);
+  ShotSource src = make_shot_source(s, *shooter);
   for (Vec3& u : source_mesh.unshot) u = -over;
 
   src.major = s.options.major_shot_fraction > 0.0 &&

@@ -1,8 +1,8 @@
 #include "solver/solver_state.h"
 
-#include <cmath>
-
 #include <tbb/parallel_for.h>
+
+#include <cmath>
 
 #include "mesh/sample_points.h"
 #include "mesh/subdivide.h"
@@ -75,10 +75,6 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
     total_area += h.triangles.area[t];
   }
   s.total_area = total_area;
-  for (size_t t = 0; t < h.triangles.size(); ++t) {
-    s.mean_reflectance += double(mean_component(s.material_of(t).reflectance)) *
-                          h.triangles.area[t] / std::max(total_area, 1e-30);
-  }
   s.radiosity_scale = total_area > 0.0 ? float(s.emitted_energy / total_area) : 1.0f;
   if (!(s.radiosity_scale > 0.0f)) s.radiosity_scale = 1.0f;
   s.shadow_offset = shadow_offset(h.bounds);
@@ -88,17 +84,33 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   return s;
 }
 
+namespace {
+// Area-weighted mean reflectance per channel, from the current (possibly edited) materials.
+DVec3 mean_reflectance(const SolverState& s) {
+  const Triangles& tris = s.hierarchy->triangles;
+  DVec3 rho(0.0);
+  for (size_t t = 0; t < tris.size(); ++t)
+    rho += DVec3(s.material_of(t).reflectance) * double(tris.area[t]);
+  return s.total_area > 0.0 ? rho / s.total_area : rho;
+}
+
+// Cohen's interreflection factor 1 / (1 - mean reflectance), kept finite.
+DVec3 interreflection(const DVec3& mean_rho) {
+  return 1.0 / (1.0 - glm::min(mean_rho, DVec3(0.999)));
+}
+}  // namespace
+
 float ambient_estimate(const SolverState& s) {
   if (s.total_area <= 0.0) return 0.0f;
   double unshot = 0.0;
   for (double e : s.unshot_energy) unshot += e;
-  return float(unshot / s.total_area / (1.0 - std::min(s.mean_reflectance, 0.999)));
+  return float(unshot / s.total_area * mean_component(Vec3(interreflection(mean_reflectance(s)))));
 }
 
 Vec3 ambient_radiosity(const SolverState& s) {
   const Hierarchy& h = *s.hierarchy;
-  DVec3 unshot(0.0), rho(0.0);
-  double area = 0.0;
+  if (s.total_area <= 0.0) return Vec3(0.0f);
+  DVec3 unshot(0.0);
   for (size_t t = 0; t < h.triangles.size(); ++t) {
     const PolygonMesh& p = s.mesh.polygons[t];
     DVec3 u(0.0);
@@ -108,12 +120,8 @@ Vec3 ambient_radiosity(const SolverState& s) {
            (double(el.area) / 3.0);
     });
     unshot += u;
-    rho += DVec3(s.material_of(t).reflectance) * double(h.triangles.area[t]);
-    area += h.triangles.area[t];
   }
-  if (area <= 0.0) return Vec3(0.0f);
-  const DVec3 mean_rho = rho / area;
-  return Vec3(unshot / area / (DVec3(1.0) - glm::min(mean_rho, DVec3(0.999))));
+  return Vec3(unshot / s.total_area * interreflection(mean_reflectance(s)));
 }
 
 }  // namespace rad

@@ -49,7 +49,6 @@ struct SolverState {
   double absorbed_energy = 0.0;  // sum over shots of received energy not reflected
   float radiosity_scale = 1.0f;  // emitted power / total area: what relative limits scale by
   double total_area = 0.0;
-  double mean_reflectance = 0.0;  // area-weighted, mean over channels
   float min_size = 0.0f;         // smallest element edge
   float max_size = 0.0f;         // largest element edge of the initial mesh
   float shadow_offset = 0.0f;

@@ -178,7 +178,7 @@ TEST_P(AnalyticScenes, FurnaceBoxConvergesToEOverOneMinusRho) {
 INSTANTIATE_TEST_SUITE_P(AllBackends, AnalyticScenes,
                          ::testing::Values(BackendKind::Embree, BackendKind::Grid,
                                            BackendKind::Brute),
-                         [](const auto& info) { return std::string(to_string(info.param)); });
+                         [](const auto& param) { return std::string(to_string(param.param)); });
 
 }  // namespace
 }  // namespace rad

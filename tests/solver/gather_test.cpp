@@ -31,7 +31,7 @@ struct CornerScene {
     float sum = 0;
     for (int32_t src = 2; src < 4; ++src) {
       sum += gather_from_source(x, {0, 0, 1}, polygon_centroid(h.triangles, 1), 
-                                make_shot_source(s, src, s.sample_barycentrics), *vis, g, sc).x;
+                                make_shot_source(s, src), *vis, g, sc).x;
     }
     return sum;
   }
@@ -63,7 +63,7 @@ TEST(Gather, IntensityCutSkipsRaysAndCountsThem) {
   CornerScene c;
   GatherSettings g = gather_settings(c.s);
   GatherScratch sc;
-  const ShotSource src = make_shot_source(c.s, 2, c.s.sample_barycentrics);
+  const ShotSource src = make_shot_source(c.s, 2);
   const Vec3 x(0.7f, 0.5f, 0);
   const Vec3 traced = gather_from_source(x, {0, 0, 1}, x, src, *c.vis, g, sc);
   EXPECT_EQ(sc.stats.intensity_cuts, 0u);
