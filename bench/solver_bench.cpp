@@ -111,11 +111,12 @@ StateBytes solver_state_bytes(const SolverState& s) {
   StateBytes b;
   b.polygon_structs = heap_bytes(s.mesh.polygons);
   for (const PolygonMesh& p : s.mesh.polygons) {
-    b.vertex_arrays += heap_bytes(p.position) + heap_bytes(p.irradiance) + heap_bytes(p.unshot) +
-                       heap_bytes(p.shot) + heap_bytes(p.major);
+    b.vertex_arrays += heap_bytes(p.vertices);
     b.elements += heap_bytes(p.elements);
-    if (p.midpoints.bucket_count() > 1) b.midpoints += p.midpoints.bucket_count() * 8 + 8;
-    b.midpoints += p.midpoints.size() * 32;
+    if (p.midpoints.size() > 0) {  // allocated at the first split: the map, buckets, nodes
+      const auto& m = p.midpoints.entries();
+      b.midpoints += sizeof(m) + 8 + m.bucket_count() * 8 + 8 + m.size() * 32;
+    }
   }
   b.other = sizeof(SolverState) + heap_bytes(s.materials) + heap_bytes(s.unshot_energy) +
             heap_bytes(s.sample_barycentrics) + heap_bytes(s.history);
@@ -167,7 +168,7 @@ std::unique_ptr<ShotCase> prepare_shot(SolverState s, const VisibilityBackend& v
   if (!shooter) return nullptr;
   c->index = s.shots + 1;
   c->src = make_shot_source(s, *shooter);
-  for (Vec3& u : s.mesh.polygons[size_t(*shooter)].unshot) u = Vec3(0.0f);
+  for (MeshVertex& v : s.mesh.polygons[size_t(*shooter)].vertices) v.unshot = Vec3(0.0f);
   c->major =
       s.options.major_shot_fraction > 0.0 && std::abs(s.unshot_energy[size_t(*shooter)]) >=
                                                  s.options.major_shot_fraction * s.emitted_energy;

@@ -13,13 +13,15 @@ OutputMesh make_output_mesh(const SolverState& s, bool ambient) {
     const PolygonFaces f = triangulate_leaves(m);
     const uint32_t base = uint32_t(out.position.size());
     for (uint32_t v = 0; v < m.vertex_count(); ++v) {
-      out.position.push_back(m.position[v]);
+      out.position.push_back(m.vertices[v].position);
       out.radiosity.push_back(s.radiosity(p, v));
     }
     for (const auto& c : f.centroids) {
-      out.position.push_back((m.position[c[0]] + m.position[c[1]] + m.position[c[2]]) / 3.0f);
-      out.radiosity.push_back(
-          (s.radiosity(p, c[0]) + s.radiosity(p, c[1]) + s.radiosity(p, c[2])) / 3.0f);
+      out.position.push_back(
+          (m.vertices[c[0]].position + m.vertices[c[1]].position + m.vertices[c[2]].position) /
+          3.0f);
+      out.radiosity.push_back((s.radiosity(p, c[0]) + s.radiosity(p, c[1]) + s.radiosity(p, c[2])) /
+                              3.0f);
     }
     for (size_t v = base; v < out.position.size(); ++v) {
       out.display.push_back(out.radiosity[v] + mat.reflectance * amb);

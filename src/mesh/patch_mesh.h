@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 
@@ -20,21 +21,60 @@ struct Element {
   bool leaf() const { return first_child < 0; }
 };
 
+/// A vertex of the radiosity mesh and what the solver keeps there. One record per vertex (not
+/// one array per quantity): a polygon that never splits costs one allocation, not five.
+struct MeshVertex {
+  Vec3 position;
+  Vec3 irradiance{0.0f};  // H: radiosity gathered from all shots so far; B = E + rho * H
+  Vec3 unshot{0.0f};      // radiosity received but not yet shot
+  Vec3 shot{0.0f};        // H gathered during the current shot only (for subdivision)
+  Vec3 major{0.0f};       // part of H gathered from the solver's major shots (see solver)
+};
+
+/// The midpoint vertex of every split edge of one polygon (key: edge_key of the two ends).
+/// Allocated on the first split: most polygons of a large scene never split, and an empty
+/// std::unordered_map alone is 56 bytes.
+class MidpointMap {
+ public:
+  using Map = std::unordered_map<uint64_t, uint32_t>;
+  MidpointMap() = default;
+  MidpointMap(const MidpointMap& o) : map_(o.map_ ? std::make_unique<Map>(*o.map_) : nullptr) {}
+  MidpointMap(MidpointMap&&) noexcept = default;
+  MidpointMap& operator=(const MidpointMap& o) { return *this = MidpointMap(o); }
+  MidpointMap& operator=(MidpointMap&&) noexcept = default;
+
+  /// The vertex stored for `key`, or -1.
+  int64_t find(uint64_t key) const {
+    if (!map_) return -1;
+    auto it = map_->find(key);
+    return it == map_->end() ? -1 : int64_t(it->second);
+  }
+  /// The entry for `key`, made with value 0 if absent; second: whether it was made.
+  std::pair<uint32_t*, bool> try_emplace(uint64_t key) {
+    if (!map_) map_ = std::make_unique<Map>();
+    auto [it, made] = map_->try_emplace(key, 0u);
+    return {&it->second, made};
+  }
+  size_t size() const { return map_ ? map_->size() : 0; }
+  /// The entries, empty before the first split.
+  const Map& entries() const {
+    static const Map empty;
+    return map_ ? *map_ : empty;
+  }
+
+ private:
+  std::unique_ptr<Map> map_;
+};
+
 /// One polygon (an original triangle) and everything its subdivision created. A vertex is
 /// stored once however many elements share it, and belongs to this polygon only (the original
 /// keeps no connectivity between polygons).
 struct PolygonMesh {
-  // Per vertex.
-  std::vector<Vec3> position;
-  std::vector<Vec3> irradiance;  // H: radiosity gathered from all shots so far; B = E + rho * H
-  std::vector<Vec3> unshot;      // radiosity received but not yet shot
-  std::vector<Vec3> shot;        // H gathered during the current shot only (for subdivision)
-  std::vector<Vec3> major;       // part of H gathered from the solver's major shots (see solver)
-  // Elements, and the midpoint of every split edge (key: the two end vertices, lower first).
+  std::vector<MeshVertex> vertices;
   std::vector<Element> elements;
-  std::unordered_map<uint64_t, uint32_t> midpoints;
+  MidpointMap midpoints;
 
-  size_t vertex_count() const { return position.size(); }
+  size_t vertex_count() const { return vertices.size(); }
   /// Appends a vertex with zero radiosity; returns its index.
   uint32_t add_vertex(const Vec3& p);
   /// The midpoint vertex of edge (a, b), or -1 if that edge was never split.

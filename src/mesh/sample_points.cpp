@@ -58,10 +58,11 @@ uint32_t locate_leaf(const PolygonMesh& p, Vec3 w, Vec3* leaf_bary) {
   return e;
 }
 
-Vec3 interpolate_at(const PolygonMesh& p, const std::vector<Vec3>& per_vertex, Vec3 bary) {
+Vec3 interpolate_at(const PolygonMesh& p, Vec3 MeshVertex::*field, Vec3 bary) {
   Vec3 w;
   const Element& el = p.elements[locate_leaf(p, bary, &w)];
-  return per_vertex[el.v[0]] * w.x + per_vertex[el.v[1]] * w.y + per_vertex[el.v[2]] * w.z;
+  return p.vertices[el.v[0]].*field * w.x + p.vertices[el.v[1]].*field * w.y +
+         p.vertices[el.v[2]].*field * w.z;
 }
 
 }  // namespace rad

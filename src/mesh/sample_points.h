@@ -16,14 +16,15 @@ std::vector<Vec3> regular_sample_barycentrics(int m);
 /// For each point of `fine` (barycentrics), the index of the nearest point of `coarse`. For
 /// regular grids where `fine` is a 4x refinement of `coarse`, that is the coarse sample whose
 /// sub-triangle holds the fine one.
-std::vector<uint32_t> nearest_samples(const std::vector<Vec3>& fine, const std::vector<Vec3>& coarse);
+std::vector<uint32_t> nearest_samples(const std::vector<Vec3>& fine,
+                                      const std::vector<Vec3>& coarse);
 
 /// The leaf element of `p` holding the point with polygon barycentrics `bary`, and the
 /// point's barycentrics within that leaf. Follows the 1->4 split order of split_element.
 uint32_t locate_leaf(const PolygonMesh& p, Vec3 bary, Vec3* leaf_bary);
 
-/// A per-vertex quantity of `p` interpolated at polygon barycentrics `bary` from the vertices of
-/// the leaf element holding it.
-Vec3 interpolate_at(const PolygonMesh& p, const std::vector<Vec3>& per_vertex, Vec3 bary);
+/// A per-vertex quantity of `p` (the member `field` of its vertices) interpolated at polygon
+/// barycentrics `bary` from the vertices of the leaf element holding it.
+Vec3 interpolate_at(const PolygonMesh& p, Vec3 MeshVertex::*field, Vec3 bary);
 
 }  // namespace rad

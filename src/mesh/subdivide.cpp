@@ -9,12 +9,12 @@ int split_element(PolygonMesh& p, uint32_t e, NewMidpoint created[3]) {
   const uint32_t v0 = p.elements[e].v[0], v1 = p.elements[e].v[1], v2 = p.elements[e].v[2];
   int n = 0;
   auto mid = [&](uint32_t a, uint32_t b) {
-    auto [it, inserted] = p.midpoints.try_emplace(edge_key(a, b), 0u);
+    auto [slot, inserted] = p.midpoints.try_emplace(edge_key(a, b));
     if (inserted) {
-      it->second = p.add_vertex((p.position[a] + p.position[b]) * 0.5f);
-      created[n++] = {it->second, a, b};
+      *slot = p.add_vertex((p.vertices[a].position + p.vertices[b].position) * 0.5f);
+      created[n++] = {*slot, a, b};
     }
-    return it->second;
+    return *slot;
   };
   const uint32_t m01 = mid(v0, v1), m12 = mid(v1, v2), m20 = mid(v2, v0);
   const float child_area = p.elements[e].area * 0.25f;
@@ -29,9 +29,10 @@ int split_element(PolygonMesh& p, uint32_t e, NewMidpoint created[3]) {
 
 float longest_edge(const PolygonMesh& p, uint32_t e) {
   const Element& el = p.elements[e];
-  const Vec3 &a = p.position[el.v[0]], &b = p.position[el.v[1]], &c = p.position[el.v[2]];
-  return glm::sqrt(glm::max(glm::dot(b - a, b - a), glm::max(glm::dot(c - b, c - b),
-                                                              glm::dot(a - c, a - c))));
+  const Vec3 &a = p.vertices[el.v[0]].position, &b = p.vertices[el.v[1]].position,
+             &c = p.vertices[el.v[2]].position;
+  return glm::sqrt(
+      glm::max(glm::dot(b - a, b - a), glm::max(glm::dot(c - b, c - b), glm::dot(a - c, a - c))));
 }
 
 }  // namespace rad

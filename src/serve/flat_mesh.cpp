@@ -30,9 +30,11 @@ std::shared_ptr<const SnapshotGeometry> FlatMesh::update(const SolverState& s, b
     const PolygonMesh& m = polys[p];
     const PolygonFaces& f = polygons_[p].faces;
     const uint32_t base = uint32_t(g->position.size());
-    g->position.insert(g->position.end(), m.position.begin(), m.position.end());
+    for (const MeshVertex& v : m.vertices) g->position.push_back(v.position);
     for (const auto& k : f.centroids) {
-      g->position.push_back((m.position[k[0]] + m.position[k[1]] + m.position[k[2]]) / 3.0f);
+      g->position.push_back(
+          (m.vertices[k[0]].position + m.vertices[k[1]].position + m.vertices[k[2]].position) /
+          3.0f);
     }
     for (uint32_t i : f.triangles) g->indices.push_back(base + i);
     g->face_polygon.insert(g->face_polygon.end(), f.triangles.size() / 3, int32_t(p));

@@ -1,9 +1,8 @@
 #include "solver/edits.h"
 
+#include <fmt/format.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-
-#include <fmt/format.h>
 
 #include "mesh/subdivide.h"
 #include "solver/refine.h"
@@ -11,8 +10,7 @@
 
 namespace rad {
 
-void set_material(SolverState& s, int32_t object, const Material& m,
-                  const VisibilityBackend& vis) {
+void set_material(SolverState& s, int32_t object, const Material& m, const VisibilityBackend& vis) {
   const Hierarchy& h = *s.hierarchy;
   if (object < 0 || size_t(object) >= h.objects.size() ||
       h.objects[size_t(object)].kind != ObjectKind::Pure) {
@@ -30,7 +28,7 @@ void set_material(SolverState& s, int32_t object, const Material& m,
   s.materials[size_t(object)] = m;
   for (uint32_t t = o.first_triangle; t < o.first_triangle + o.triangle_count; ++t) {
     PolygonMesh& p = s.mesh.polygons[t];
-    for (size_t v = 0; v < p.vertex_count(); ++v) p.unshot[v] += d_e + d_rho * p.irradiance[v];
+    for (MeshVertex& v : p.vertices) v.unshot += d_e + d_rho * v.irradiance;
     s.emitted_energy += double(h.triangles.area[t]) * double(mean_component(d_e));
     s.unshot_energy[t] = polygon_unshot_energy(p);
   }
@@ -60,10 +58,12 @@ size_t force_subdivide(SolverState& s, int32_t polygon, const VisibilityBackend&
   tbb::enumerable_thread_specific<GatherScratch> scratch;
   tbb::parallel_for(size_t(0), created.size(), [&](size_t i) {
     const NewMidpoint& c = created[i];
-    m.irradiance[c.vertex] = regather_shots(s, m.position[c.vertex], uint32_t(polygon), false, vis,
-                                            settings, scratch.local(), &m.major[c.vertex]);
-    m.unshot[c.vertex] = (m.unshot[c.a] + m.unshot[c.b]) * 0.5f;  // transient: interpolated
-    m.shot[c.vertex] = Vec3(0.0f);
+    MeshVertex& mid = m.vertices[c.vertex];
+    mid.irradiance = regather_shots(s, mid.position, uint32_t(polygon), false, vis, settings,
+                                    scratch.local(), &mid.major);
+    mid.unshot =
+        (m.vertices[c.a].unshot + m.vertices[c.b].unshot) * 0.5f;  // transient: interpolated
+    mid.shot = Vec3(0.0f);
   });
   for (const GatherScratch& sc : scratch) s.stats += sc.stats;
   s.stats.exact_midpoints += created.size();

@@ -65,7 +65,9 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
         if (check[p].empty()) continue;
         PolygonMesh& m = s.mesh.polygons[p];
         const Material& mat = s.material_of(p);
-        auto B = [&](uint32_t v) { return mat.emission + mat.reflectance * m.irradiance[v]; };
+        auto B = [&](uint32_t v) {
+          return mat.emission + mat.reflectance * m.vertices[v].irradiance;
+        };
         for (uint32_t e : check[p]) {
           const uint32_t v[3] = {m.elements[e].v[0], m.elements[e].v[1], m.elements[e].v[2]};
           const Vec3 b0 = B(v[0]), b1 = B(v[1]), b2 = B(v[2]);
@@ -82,10 +84,12 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
             if (all_exact || exact_edge[index_of(c.a)][index_of(c.b)]) {
               exact[p].push_back({uint32_t(p), c.vertex, c.a, c.b});
             } else {
-              m.irradiance[c.vertex] = (m.irradiance[c.a] + m.irradiance[c.b]) * 0.5f;
-              m.unshot[c.vertex] = (m.unshot[c.a] + m.unshot[c.b]) * 0.5f;
-              m.shot[c.vertex] = (m.shot[c.a] + m.shot[c.b]) * 0.5f;
-              m.major[c.vertex] = (m.major[c.a] + m.major[c.b]) * 0.5f;
+              const MeshVertex &a = m.vertices[c.a], &b = m.vertices[c.b];
+              MeshVertex& mid = m.vertices[c.vertex];
+              mid.irradiance = (a.irradiance + b.irradiance) * 0.5f;
+              mid.unshot = (a.unshot + b.unshot) * 0.5f;
+              mid.shot = (a.shot + b.shot) * 0.5f;
+              mid.major = (a.major + b.major) * 0.5f;
               ++interpolated[p];
             }
           }
@@ -103,36 +107,35 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
         const ExactVertex& x = flat[i];
         PolygonMesh& m = s.mesh.polygons[x.polygon];
         const Vec3 rho = s.material_of(x.polygon).reflectance;
-        const Vec3 pos = m.position[x.vertex];
+        const MeshVertex &a = m.vertices[x.a], &b = m.vertices[x.b];
+        MeshVertex& mid = m.vertices[x.vertex];
         if (src == nullptr) {  // between shots: every earlier shot gathered again, exact
-          m.irradiance[x.vertex] =
-              regather_shots(s, pos, x.polygon, false, vis, settings, sc, &m.major[x.vertex]);
+          mid.irradiance =
+              regather_shots(s, mid.position, x.polygon, false, vis, settings, sc, &mid.major);
           // Unshot: the edit's part d_rho * H exact, the rest interpolated (transient).
-          m.unshot[x.vertex] = (m.unshot[x.a] - d_rho * m.irradiance[x.a] + m.unshot[x.b] -
-                                d_rho * m.irradiance[x.b]) * 0.5f +
-                               d_rho * m.irradiance[x.vertex];
-          m.shot[x.vertex] = Vec3(0.0f);
+          mid.unshot = (a.unshot - d_rho * a.irradiance + b.unshot - d_rho * b.irradiance) * 0.5f +
+                       d_rho * mid.irradiance;
+          mid.shot = Vec3(0.0f);
           continue;
         }
-        const Vec3 dh = gather_from_source(pos, tris.normal[x.polygon],
-                                           polygon_centroid(tris, x.polygon), *src, vis,
-                                           settings, sc);
+        const Vec3 dh =
+            gather_from_source(mid.position, tris.normal[x.polygon],
+                               polygon_centroid(tris, x.polygon), *src, vis, settings, sc);
         Vec3 major_h(0.0f);
-        regather_shots(s, pos, x.polygon, true, vis, settings, sc, &major_h);
+        regather_shots(s, mid.position, x.polygon, true, vis, settings, sc, &major_h);
         // Earlier minor shots: interpolated from the edge's ends (SPEC §5).
-        Vec3 minor_a = m.irradiance[x.a] - m.shot[x.a] - m.major[x.a];
-        Vec3 minor_b = m.irradiance[x.b] - m.shot[x.b] - m.major[x.b];
+        Vec3 minor_a = a.irradiance - a.shot - a.major;
+        Vec3 minor_b = b.irradiance - b.shot - b.major;
         if (major) {  // the ends' major part includes this shot's
-          minor_a += m.shot[x.a];
-          minor_b += m.shot[x.b];
+          minor_a += a.shot;
+          minor_b += b.shot;
         }
         const Vec3 earlier_h = (minor_a + minor_b) * 0.5f + major_h;
-        const Vec3 earlier_u =
-            (m.unshot[x.a] - rho * m.shot[x.a] + m.unshot[x.b] - rho * m.shot[x.b]) * 0.5f;
-        m.irradiance[x.vertex] = earlier_h + dh;
-        m.unshot[x.vertex] = earlier_u + rho * dh;
-        m.shot[x.vertex] = dh;
-        m.major[x.vertex] = major ? major_h + dh : major_h;
+        const Vec3 earlier_u = (a.unshot - rho * a.shot + b.unshot - rho * b.shot) * 0.5f;
+        mid.irradiance = earlier_h + dh;
+        mid.unshot = earlier_u + rho * dh;
+        mid.shot = dh;
+        mid.major = major ? major_h + dh : major_h;
       }
     });
     s.stats.exact_midpoints += flat.size();

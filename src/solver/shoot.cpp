@@ -52,11 +52,12 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
       auto body = [&](size_t v0, size_t v1) {
         GatherScratch& sc = scratch.local();
         for (size_t v = v0; v < v1; ++v) {
-          const Vec3 dh = gather_from_source(mesh.position[v], n, centroid, src, vis, settings, sc);
-          mesh.irradiance[v] += dh;
-          mesh.unshot[v] += rho * dh;
-          mesh.shot[v] = dh;
-          if (major) mesh.major[v] += dh;
+          MeshVertex& x = mesh.vertices[v];
+          const Vec3 dh = gather_from_source(x.position, n, centroid, src, vis, settings, sc);
+          x.irradiance += dh;
+          x.unshot += rho * dh;
+          x.shot = dh;
+          if (major) x.major += dh;
         }
       };
       const size_t nv = mesh.vertex_count();

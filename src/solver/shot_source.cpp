@@ -21,7 +21,7 @@ ShotSource make_shot_source(const SolverState& s, int32_t p) {
   src.unshot.reserve(bary.size());
   for (const Vec3& w : bary) {
     src.sample.push_back(src.corner[0] * w.x + src.corner[1] * w.y + src.corner[2] * w.z);
-    src.unshot.push_back(interpolate_at(mesh, mesh.unshot, w));
+    src.unshot.push_back(interpolate_at(mesh, &MeshVertex::unshot, w));
     src.mean_unshot += src.unshot.back();
   }
   src.mean_unshot /= float(bary.size());
@@ -35,7 +35,7 @@ ShotSource make_shot_source(const SolverState& s, int32_t p) {
   src.fine_parent = s.fine_parent;
   for (const Vec3& w : s.fine_barycentrics) {
     src.fine_sample.push_back(src.corner[0] * w.x + src.corner[1] * w.y + src.corner[2] * w.z);
-    src.fine_unshot.push_back(interpolate_at(mesh, mesh.unshot, w));
+    src.fine_unshot.push_back(interpolate_at(mesh, &MeshVertex::unshot, w));
   }
   return src;
 }

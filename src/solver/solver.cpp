@@ -35,10 +35,10 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   Vec3 over(0.0f);
   if (s.options.overshoot) {
     over = s.material_of(src_id).reflectance * ambient_estimate(s);
-    for (Vec3& u : source_mesh.unshot) u += over;
+    for (MeshVertex& v : source_mesh.vertices) v.unshot += over;
   }
   ShotSource src = make_shot_source(s, *shooter);
-  for (Vec3& u : source_mesh.unshot) u = -over;
+  for (MeshVertex& v : source_mesh.vertices) v.unshot = -over;
 
   src.major = s.options.major_shot_fraction > 0.0 &&
               std::abs(s.unshot_energy[src_id]) >= s.options.major_shot_fraction * s.emitted_energy;
@@ -62,7 +62,8 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
     for_each_leaf(m, [&](uint32_t e) {
       const Element& el = m.elements[e];
       a += double(el.area) *
-           mean_component(absorptance * (m.shot[el.v[0]] + m.shot[el.v[1]] + m.shot[el.v[2]])) /
+           mean_component(absorptance * (m.vertices[el.v[0]].shot + m.vertices[el.v[1]].shot +
+                                         m.vertices[el.v[2]].shot)) /
            3.0;
     });
     absorbed[p] = a;
@@ -82,10 +83,14 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
 
 const char* to_string(StopReason r) {
   switch (r) {
-    case StopReason::Converged: return "converged";
-    case StopReason::MaxShots: return "shot limit reached";
-    case StopReason::TimeLimit: return "time limit reached";
-    case StopReason::NothingToShoot: return "nothing left to shoot";
+    case StopReason::Converged:
+      return "converged";
+    case StopReason::MaxShots:
+      return "shot limit reached";
+    case StopReason::TimeLimit:
+      return "time limit reached";
+    case StopReason::NothingToShoot:
+      return "nothing left to shoot";
   }
   return "?";
 }

@@ -27,7 +27,8 @@ double polygon_unshot_energy(const PolygonMesh& p) {
   double e = 0.0;
   for_each_leaf(p, [&](uint32_t i) {
     const Element& el = p.elements[i];
-    const Vec3 sum = p.unshot[el.v[0]] + p.unshot[el.v[1]] + p.unshot[el.v[2]];
+    const Vec3 sum =
+        p.vertices[el.v[0]].unshot + p.vertices[el.v[1]].unshot + p.vertices[el.v[2]].unshot;
     e += double(el.area) * double(mean_component(sum)) / 3.0;
   });
   return e;
@@ -69,7 +70,7 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   for (size_t t = 0; t < h.triangles.size(); ++t) {
     const Vec3 e = s.material_of(t).emission;
     PolygonMesh& p = s.mesh.polygons[t];
-    for (auto& u : p.unshot) u = e;
+    for (MeshVertex& v : p.vertices) v.unshot = e;
     s.unshot_energy[t] = polygon_unshot_energy(p);
     s.emitted_energy += s.unshot_energy[t];
     total_area += h.triangles.area[t];
@@ -116,7 +117,8 @@ Vec3 ambient_radiosity(const SolverState& s) {
     DVec3 u(0.0);
     for_each_leaf(p, [&](uint32_t i) {
       const Element& el = p.elements[i];
-      u += DVec3(p.unshot[el.v[0]] + p.unshot[el.v[1]] + p.unshot[el.v[2]]) *
+      u += DVec3(p.vertices[el.v[0]].unshot + p.vertices[el.v[1]].unshot +
+                 p.vertices[el.v[2]].unshot) *
            (double(el.area) / 3.0);
     });
     unshot += u;

@@ -29,10 +29,10 @@ struct SolverStats {
 
 /// One line of the convergence history.
 struct ShotRecord {
-  int64_t shot;           // 1-based
-  int32_t source;         // polygon that shot
-  double seconds;         // since the solve began
-  double unshot_fraction; // unshot / emitted energy after the shot
+  int64_t shot;            // 1-based
+  int32_t source;          // polygon that shot
+  double seconds;          // since the solve began
+  double unshot_fraction;  // unshot / emitted energy after the shot
 };
 
 struct SolverState {
@@ -49,8 +49,8 @@ struct SolverState {
   double absorbed_energy = 0.0;  // sum over shots of received energy not reflected
   float radiosity_scale = 1.0f;  // emitted power / total area: what relative limits scale by
   double total_area = 0.0;
-  float min_size = 0.0f;         // smallest element edge
-  float max_size = 0.0f;         // largest element edge of the initial mesh
+  float min_size = 0.0f;  // smallest element edge
+  float max_size = 0.0f;  // largest element edge of the initial mesh
   float shadow_offset = 0.0f;
   std::vector<Vec3> sample_barycentrics;  // where a source is sampled, in its own barycentrics
   std::vector<Vec3> fine_barycentrics;    // the near-field samples (4x finer grid)
@@ -68,7 +68,7 @@ struct SolverState {
   /// Radiosity B = E + rho * H of vertex v of polygon p.
   Vec3 radiosity(size_t p, uint32_t v) const {
     const Material& m = material_of(p);
-    return m.emission + m.reflectance * mesh.polygons[p].irradiance[v];
+    return m.emission + m.reflectance * mesh.polygons[p].vertices[v].irradiance;
   }
   double unshot_total() const;
   double unshot_fraction() const {

@@ -8,8 +8,11 @@ namespace rad {
 namespace {
 
 std::vector<Vec3> positions_with_centroids(const PolygonMesh& p, const PolygonFaces& f) {
-  std::vector<Vec3> pos = p.position;
-  for (const auto& c : f.centroids) pos.push_back((p.position[c[0]] + p.position[c[1]] + p.position[c[2]]) / 3.0f);
+  std::vector<Vec3> pos;
+  for (const MeshVertex& v : p.vertices) pos.push_back(v.position);
+  for (const auto& c : f.centroids)
+    pos.push_back(
+        (p.vertices[c[0]].position + p.vertices[c[1]].position + p.vertices[c[2]].position) / 3.0f);
   return pos;
 }
 

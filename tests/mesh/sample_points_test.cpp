@@ -47,8 +47,10 @@ TEST(SamplePoints, LocateLeafFindsTheLeafHoldingThePoint) {
     EXPECT_GE(lw.y, -1e-4f);
     EXPECT_GE(lw.z, -1e-4f);
     const uint32_t* v = p.elements[e].v;
-    const Vec3 q = p.position[v[0]] * lw.x + p.position[v[1]] * lw.y + p.position[v[2]] * lw.z;
-    const Vec3 expected = p.position[0] * w.x + p.position[1] * w.y + p.position[2] * w.z;
+    const Vec3 q = p.vertices[v[0]].position * lw.x + p.vertices[v[1]].position * lw.y +
+                   p.vertices[v[2]].position * lw.z;
+    const Vec3 expected =
+        p.vertices[0].position * w.x + p.vertices[1].position * w.y + p.vertices[2].position * w.z;
     EXPECT_NEAR(glm::length(q - expected), 0.0f, 1e-4f);
   }
 }
@@ -56,11 +58,11 @@ TEST(SamplePoints, LocateLeafFindsTheLeafHoldingThePoint) {
 TEST(SamplePoints, InterpolationReproducesALinearField) {
   PolygonMesh p = testing::one_polygon();
   testing::split_randomly(p, 20, 11);
-  std::vector<Vec3> f(p.vertex_count());
-  for (size_t v = 0; v < f.size(); ++v) f[v] = Vec3(2.0f * p.position[v].x + 1.0f, p.position[v].y, 0.5f);
+  for (MeshVertex& v : p.vertices) v.unshot = Vec3(2.0f * v.position.x + 1.0f, v.position.y, 0.5f);
   const Vec3 w(0.2f, 0.3f, 0.5f);
-  const Vec3 x = p.position[0] * w.x + p.position[1] * w.y + p.position[2] * w.z;
-  const Vec3 got = interpolate_at(p, f, w);
+  const Vec3 x =
+      p.vertices[0].position * w.x + p.vertices[1].position * w.y + p.vertices[2].position * w.z;
+  const Vec3 got = interpolate_at(p, &MeshVertex::unshot, w);
   EXPECT_NEAR(got.x, 2.0f * x.x + 1.0f, 1e-5f);
   EXPECT_NEAR(got.y, x.y, 1e-5f);
 }

@@ -19,7 +19,8 @@ TEST(Subdivide, SplitsIntoFourChildrenOfAQuarterAreaWithThreeNewMidpoints) {
     EXPECT_FLOAT_EQ(p.elements[c].area, 0.125f);
   }
   for (const NewMidpoint& m : created) {
-    EXPECT_EQ(p.position[m.vertex], (p.position[m.a] + p.position[m.b]) * 0.5f);
+    EXPECT_EQ(p.vertices[m.vertex].position,
+              (p.vertices[m.a].position + p.vertices[m.b].position) * 0.5f);
   }
 }
 
@@ -29,7 +30,8 @@ TEST(Subdivide, ChildrenKeepTheParentOrientation) {
   split_element(p, 0, created);
   for (int c = 1; c <= 4; ++c) {
     const uint32_t* v = p.elements[c].v;
-    const Vec3 n = glm::cross(p.position[v[1]] - p.position[v[0]], p.position[v[2]] - p.position[v[0]]);
+    const Vec3 n = glm::cross(p.vertices[v[1]].position - p.vertices[v[0]].position,
+                              p.vertices[v[2]].position - p.vertices[v[0]].position);
     EXPECT_GT(n.z, 0.0f) << "child " << c;
   }
 }

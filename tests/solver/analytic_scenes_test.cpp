@@ -35,9 +35,11 @@ void for_each_vertex_of(const Solved& r, const std::string& name, F&& f) {
   for (size_t p = 0; p < r.h.triangles.size(); ++p) {
     if (r.h.objects[size_t(r.h.triangles.object[p])].name != name) continue;
     const PolygonMesh& m = r.s.mesh.polygons[p];
-    const Vec3 centroid = (m.position[0] + m.position[1] + m.position[2]) / 3.0f;
+    const Vec3 centroid =
+        (m.vertices[0].position + m.vertices[1].position + m.vertices[2].position) / 3.0f;
     for (uint32_t v = 0; v < m.vertex_count(); ++v) {
-      f(m.position[v], r.s.radiosity(p, v), m.position[v] + (centroid - m.position[v]) * 1e-4f);
+      f(m.vertices[v].position, r.s.radiosity(p, v),
+        m.vertices[v].position + (centroid - m.vertices[v].position) * 1e-4f);
     }
   }
 }
@@ -108,8 +110,10 @@ TEST_P(AnalyticScenes, PerpendicularSquaresSharingAnEdgeMatchLambertAtEveryVerte
     err.add(b.x, rho * e * quad_form_factor(q, {0, 0, 1}, wa, wb, wc, wd));
   });
   err.finish();
-  std::printf("perpendicular squares: %d vertices (%d on the shared edge), mean error %.4f%%, "
-              "worst %.4f%%\n", err.count(), on_edge, 100 * err.mean, 100 * err.worst);
+  std::printf(
+      "perpendicular squares: %d vertices (%d on the shared edge), mean error %.4f%%, "
+      "worst %.4f%%\n",
+      err.count(), on_edge, 100 * err.mean, 100 * err.worst);
   EXPECT_GE(on_edge, 2);
   EXPECT_LE(err.mean, 0.005);
   EXPECT_LE(err.worst, 0.02);
@@ -134,7 +138,7 @@ TEST_P(AnalyticScenes, VertexInFullUmbraGetsZero) {
     if (r->h.objects[size_t(r->h.triangles.object[p])].name != "floor") continue;
     const PolygonMesh& m = r->s.mesh.polygons[p];
     for (uint32_t v = 0; v < m.vertex_count(); ++v) {
-      const Vec3 q = m.position[v];
+      const Vec3 q = m.vertices[v].position;
       const float b = r->s.radiosity(p, v).x;
       if (std::max(std::abs(q.x), std::abs(q.y)) < 0.75f) {
         if (v < 3) {
@@ -167,8 +171,7 @@ TEST_P(AnalyticScenes, FurnaceBoxConvergesToEOverOneMinusRho) {
       worst = std::max(worst, std::abs(b.y - expected) / expected);
     });
   }
-  const double balance =
-      (r->s.absorbed_energy + r->s.unshot_total()) / r->s.emitted_energy;
+  const double balance = (r->s.absorbed_energy + r->s.unshot_total()) / r->s.emitted_energy;
   std::printf("furnace: worst vertex error %.4f%%, (absorbed + unshot) / emitted = %.5f\n",
               100 * worst, balance);
   EXPECT_LE(worst, 0.005);

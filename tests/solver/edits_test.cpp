@@ -1,11 +1,11 @@
 // Editing materials and lights between shots continues the same solve to the new answer.
 #include "solver/edits.h"
-#include "solver/gather.h"
-#include "solver/shoot.h"
 
 #include <gtest/gtest.h>
 
 #include "scene_builder.h"
+#include "solver/gather.h"
+#include "solver/shoot.h"
 #include "solver/solver.h"
 
 namespace rad {
@@ -40,7 +40,8 @@ SolverOptions options() {
 }
 
 int32_t object_named(const Hierarchy& h, const std::string& name) {
-  for (size_t i = 0; i < h.objects.size(); ++i) if (h.objects[i].name == name) return int32_t(i);
+  for (size_t i = 0; i < h.objects.size(); ++i)
+    if (h.objects[i].name == name) return int32_t(i);
   return -1;
 }
 
@@ -54,7 +55,8 @@ double worst_difference(const SolverState& a, const SolverState& b) {
   mean /= n;
   for (size_t p = 0; p < a.mesh.polygons.size(); ++p) {
     for (uint32_t v = 0; v < 3; ++v) {
-      worst = std::max(worst, double(max_component(glm::abs(a.radiosity(p, v) - b.radiosity(p, v)))));
+      worst =
+          std::max(worst, double(max_component(glm::abs(a.radiosity(p, v) - b.radiosity(p, v)))));
     }
   }
   return worst / mean;
@@ -129,23 +131,25 @@ TEST(Edits, ForcedSubdivisionGivesNewVerticesTheirExactRadiosity) {
   EXPECT_EQ(m.vertex_count(), before + 3);
   // Exact: the first new vertex holds what every logged shot gives a point there, not the
   // mean of its edge's ends.
-  const Vec3 mid = m.position[before];
+  const Vec3 mid = m.vertices[before].position;
   float interpolated = 0;
-  for (const auto& [key, v] : m.midpoints) {
+  for (const auto& [key, v] : m.midpoints.entries()) {
     if (v == before) {
-      interpolated = 0.5f * (m.irradiance[key >> 32].x + m.irradiance[key & 0xffffffffu].x);
+      interpolated =
+          0.5f * (m.vertices[key >> 32].irradiance.x + m.vertices[key & 0xffffffffu].irradiance.x);
     }
   }
   GatherScratch sc;
   Vec3 expected(0.0f);
-  const Vec3 centroid = (m.position[0] + m.position[1] + m.position[2]) / 3.0f;
+  const Vec3 centroid =
+      (m.vertices[0].position + m.vertices[1].position + m.vertices[2].position) / 3.0f;
   for (const ShotSource& src : s.shot_log) {
     if (src.polygon == floor_polygon) continue;
     expected += gather_from_source(mid, h.triangles.normal[size_t(floor_polygon)], centroid, src,
                                    *vis, gather_settings(s), sc);
   }
-  EXPECT_FLOAT_EQ(m.irradiance[before].x, expected.x);
-  EXPECT_NE(m.irradiance[before].x, interpolated) << "computed, not the mean of its ends";
+  EXPECT_FLOAT_EQ(m.vertices[before].irradiance.x, expected.x);
+  EXPECT_NE(m.vertices[before].irradiance.x, interpolated) << "computed, not the mean of its ends";
 }
 
 }  // namespace

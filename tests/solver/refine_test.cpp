@@ -22,7 +22,8 @@ struct OneShot {
 std::unique_ptr<OneShot> shoot_lamp_once(SolverOptions o) {
   auto r = std::make_unique<OneShot>();
   SceneDescription d;
-  testing::add_quad(d, "floor", {-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, Vec3(0.5f), Vec3(0));
+  testing::add_quad(d, "floor", {-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, Vec3(0.5f),
+                    Vec3(0));
   testing::add_quad(d, "lamp", {0.7f, 0.7f, 0.3f}, {0.7f, 0.9f, 0.3f}, {0.9f, 0.9f, 0.3f},
                     {0.9f, 0.7f, 0.3f}, Vec3(0), Vec3(10));
   r->h = build_hierarchy(d);
@@ -42,7 +43,7 @@ struct Midpoint {
 std::vector<Midpoint> floor_midpoints(const OneShot& r) {
   std::vector<Midpoint> out;
   for (size_t p = 0; p < 2; ++p) {
-    for (const auto& [key, v] : r.s.mesh.polygons[p].midpoints) {
+    for (const auto& [key, v] : r.s.mesh.polygons[p].midpoints.entries()) {
       out.push_back({p, v, uint32_t(key >> 32), uint32_t(key & 0xffffffffu)});
     }
   }
@@ -58,13 +59,13 @@ TEST(Refine, OriginalRuleComputesOnlyMidpointsOfEdgesBeyondTheLimit) {
   for (const Midpoint& m : floor_midpoints(*r)) {
     const PolygonMesh& pm = r->s.mesh.polygons[m.polygon];
     // Both ends of an edge existed before its midpoint, so their values decided the rule.
-    const Vec3 mean = (pm.irradiance[m.a] + pm.irradiance[m.b]) * 0.5f;
+    const Vec3 mean = (pm.vertices[m.a].irradiance + pm.vertices[m.b].irradiance) * 0.5f;
     const Vec3 ba = r->s.radiosity(m.polygon, m.a), bb = r->s.radiosity(m.polygon, m.b);
     if (differs(ba, bb, limit)) {
       ++computed;
     } else {
       ++interpolated;
-      EXPECT_EQ(pm.irradiance[m.vertex], mean) << "interpolated midpoint must be the mean";
+      EXPECT_EQ(pm.vertices[m.vertex].irradiance, mean) << "interpolated midpoint must be the mean";
     }
   }
   EXPECT_GT(computed, 10);
@@ -81,7 +82,8 @@ TEST(Refine, ExactRuleComputesEveryMidpoint) {
   int above = 0;
   for (const Midpoint& m : floor_midpoints(*r)) {
     const PolygonMesh& pm = r->s.mesh.polygons[m.polygon];
-    above += pm.irradiance[m.vertex].x > 1.001f * 0.5f * (pm.irradiance[m.a].x + pm.irradiance[m.b].x);
+    above += pm.vertices[m.vertex].irradiance.x >
+             1.001f * 0.5f * (pm.vertices[m.a].irradiance.x + pm.vertices[m.b].irradiance.x);
   }
   EXPECT_GT(above, 0);
 }
