@@ -4,8 +4,29 @@
 
 namespace rad {
 
+namespace {
+
+// The contour sum over the clipped polygon r[0..m) (points relative to the receiver), in T.
+template <typename T>
+T contour_sum(const Vec3* r, int m, const Vec3& n) {
+  using V = glm::vec<3, T>;
+  const V nn(n);
+  T sum = 0;
+  for (int i = 0; i < m; ++i) {
+    const V p(r[i]), q(r[(i + 1) % m]);
+    const V cr = glm::cross(p, q);
+    const T len = glm::length(cr);
+    if (len <= T(0)) continue;
+    const T angle = std::atan2(len, glm::dot(p, q));
+    sum += angle * glm::dot(nn, cr) / len;
+  }
+  return sum;
+}
+
+}  // namespace
+
 float point_to_triangle_form_factor(const Vec3& x, const Vec3& n, const Vec3& a, const Vec3& b,
-                                    const Vec3& c) {
+                                    const Vec3& c, Arithmetic arithmetic) {
   // Sutherland-Hodgman against the plane (p - x) . n >= 0: a triangle gives at most 4 points.
   const Vec3 in[3] = {a - x, b - x, c - x};
   float h[3];
@@ -22,16 +43,8 @@ float point_to_triangle_form_factor(const Vec3& x, const Vec3& n, const Vec3& a,
     }
   }
   if (m < 3) return 0.0f;
-  // Contour integral in double: edge terms nearly cancel for distant sources.
-  double sum = 0.0;
-  for (int i = 0; i < m; ++i) {
-    const glm::dvec3 p(r[i]), q(r[(i + 1) % m]);
-    const glm::dvec3 cr = glm::cross(p, q);
-    const double len = glm::length(cr);
-    if (len <= 0.0) continue;
-    const double angle = std::atan2(len, glm::dot(p, q));
-    sum += angle * glm::dot(glm::dvec3(n), cr) / len;
-  }
+  const double sum = arithmetic == Arithmetic::Single ? double(contour_sum<float>(r, m, n))
+                                                      : contour_sum<double>(r, m, n);
   return float(std::min(1.0, std::abs(sum) / (2.0 * std::numbers::pi)));
 }
 

@@ -14,7 +14,7 @@ namespace rad {
 struct GatherScratch {
   std::vector<Segment> segments;
   std::vector<uint8_t> blocked;
-  std::vector<float> weight;
+  std::vector<float> weight;  // coarse samples' kernels
   std::vector<uint32_t> active;
   std::vector<uint8_t> coarse_visible;
   SolverStats stats;

@@ -10,14 +10,30 @@ namespace rad {
 
 struct SolverState;
 
+/// Points on a source and the unshot radiosity there, as a structure of arrays padded to whole
+/// groups of kLanes so the kernel loops over them run as fixed-width vector code.
+struct SampleLanes {
+  static constexpr size_t kLanes = 8;
+  std::vector<float> x, y, z;               // position
+  std::vector<float> r, g, b;               // unshot radiosity
+  std::vector<float> live;                  // 1 for a sample, 0 for padding
+  size_t size() const { return x.size(); }  // including padding
+  bool empty() const { return x.empty(); }
+  void push_back(const Vec3& p, const Vec3& u);
+  /// Appends dead lanes up to the next multiple of kLanes.
+  void pad();
+  Vec3 point(size_t i) const { return {x[i], y[i], z[i]}; }
+  Vec3 value(size_t i) const { return {r[i], g[i], b[i]}; }
+};
+
 struct ShotSource {
   int32_t polygon = -1;
   Vec3 corner[3];
   Vec3 normal;
   float area = 0.0f;
   float area_per_sample = 0.0f;  // A / n
-  std::vector<Vec3> sample;      // sample points on the source
-  std::vector<Vec3> unshot;      // the source's unshot radiosity at each sample
+  SampleLanes sample;            // sample points on the source and their unshot radiosity
+  size_t sample_count = 0;       // samples in `sample` (its lanes less the padding)
   Vec3 mean_unshot{0.0f};        // area-weighted mean unshot radiosity over the samples
   bool major = false;            // carried >= major_shot_fraction of the emitted energy
   // Near field: receivers closer to the source's plane than `near_distance` weight its unshot
@@ -25,9 +41,17 @@ struct ShotSource {
   // the coarse sample whose cell holds it), so a big source's variation is not read off the one
   // or two coarse samples that dominate the kernel up close.
   float near_distance = 0.0f;
+  // How a receiver gets its form factor, by its distance from the centroid: within
+  // single_distance the contour integral in single precision, then in double (see
+  // form_factor.h); beyond far_distance, when every sample is in front of it, the exact
+  // integrand's midpoint rule over the samples (relative error ~0.05 (edge / distance)^2).
+  Vec3 centroid{0.0f};
+  float single_distance = 0.0f, far_distance = 0.0f;
   float fine_area_per_sample = 0.0f;
-  std::vector<Vec3> fine_sample, fine_unshot;
-  std::vector<uint32_t> fine_parent;  // coarse sample of each fine one
+  // Fine samples grouped by the coarse sample whose cell holds them: those of coarse sample c
+  // are fine_sample[fine_begin[c] .. fine_begin[c + 1]).
+  SampleLanes fine_sample;
+  std::vector<uint32_t> fine_begin;
 };
 
 /// Freezes polygon p as the source of the next shot: the state's n = m*m regular samples

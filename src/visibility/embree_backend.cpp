@@ -169,34 +169,37 @@ class EmbreeBackend final : public VisibilityBackend {
   }
 
   // Groups of up to 16 consecutive segments (the solver's vertex → n samples share an origin) as
-  // one coherent packet; a partial last packet is masked by `valid`.
+  // one coherent packet; a partial last packet is masked by `valid`. The fields Embree does not
+  // write (tnear, time, mask, id, flags) are filled once per call, not once per packet.
   void trace_packets(std::span<const Segment> segments, std::span<uint8_t> out) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(64) int valid[kPacket];
+    alignas(64) RTCRay16 rays;
+    for (size_t k = 0; k < kPacket; ++k) {
+      rays.tnear[k] = 0.0f;
+      rays.time[k] = 0.0f;
+      rays.mask[k] = ~0u;
+      rays.id[k] = unsigned(k);
+      rays.flags[k] = 0;
+    }
     for (size_t begin = 0; begin < segments.size(); begin += kPacket) {
       const size_t count = std::min(kPacket, segments.size() - begin);
       if (count == 1) {
         trace_single(segments.subspan(begin, 1), out.subspan(begin, 1));
         continue;
       }
-      alignas(64) int valid[kPacket];
-      alignas(64) RTCRay16 rays;
       for (size_t k = 0; k < kPacket; ++k) {
         const Segment& s = segments[begin + (k < count ? k : 0)];
         valid[k] = k < count ? -1 : 0;
         rays.org_x[k] = s.origin.x;
         rays.org_y[k] = s.origin.y;
         rays.org_z[k] = s.origin.z;
-        rays.tnear[k] = 0.0f;
         rays.dir_x[k] = s.direction.x;
         rays.dir_y[k] = s.direction.y;
         rays.dir_z[k] = s.direction.z;
-        rays.time[k] = 0.0f;
         rays.tfar[k] = 1.0f;
-        rays.mask[k] = ~0u;
-        rays.id[k] = unsigned(k);
-        rays.flags[k] = 0;
       }
       rtcOccluded16(valid, scene_, &context, &rays);
       for (size_t k = 0; k < count; ++k) out[begin + k] = rays.tfar[k] == kNegInf ? 1 : 0;
