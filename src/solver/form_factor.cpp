@@ -6,15 +6,18 @@ namespace rad {
 
 namespace {
 
-// The contour sum over the clipped polygon r[0..m) (points relative to the receiver), in T.
+// The contour sum over the polygon r[0..m) (points relative to the receiver) whose edges are
+// e[i] = r[i+1] - r[i], in T. Each cross product is taken with the edge (p x q = p x (q - p)):
+// p and q are nearly parallel for a distant source, and p x q from the rounded points would
+// lose digits that the edge, computed from the corners themselves, keeps.
 template <typename T>
-T contour_sum(const Vec3* r, int m, const Vec3& n) {
+T contour_sum(const Vec3* r, const Vec3* e, int m, const Vec3& n) {
   using V = glm::vec<3, T>;
   const V nn(n);
   T sum = 0;
   for (int i = 0; i < m; ++i) {
     const V p(r[i]), q(r[(i + 1) % m]);
-    const V cr = glm::cross(p, q);
+    const V cr = glm::cross(p, V(e[i]));
     const T len = glm::length(cr);
     if (len <= T(0)) continue;
     const T angle = std::atan2(len, glm::dot(p, q));
@@ -32,19 +35,26 @@ float point_to_triangle_form_factor(const Vec3& x, const Vec3& n, const Vec3& a,
   float h[3];
   for (int i = 0; i < 3; ++i) h[i] = glm::dot(in[i], n);
   if (h[0] <= 0.0f && h[1] <= 0.0f && h[2] <= 0.0f) return 0.0f;
-  Vec3 r[4];
+  Vec3 r[4], e[4];
   int m = 0;
-  for (int i = 0; i < 3; ++i) {
-    const int j = (i + 1) % 3;
-    if (h[i] >= 0.0f) r[m++] = in[i];
-    if ((h[i] > 0.0f && h[j] < 0.0f) || (h[i] < 0.0f && h[j] > 0.0f)) {
-      const float t = h[i] / (h[i] - h[j]);
-      r[m++] = in[i] + (in[j] - in[i]) * t;
+  if (h[0] >= 0.0f && h[1] >= 0.0f && h[2] >= 0.0f) {  // wholly in front: edges from the corners
+    for (int i = 0; i < 3; ++i) r[i] = in[i];
+    e[0] = b - a, e[1] = c - b, e[2] = a - c;
+    m = 3;
+  } else {
+    for (int i = 0; i < 3; ++i) {
+      const int j = (i + 1) % 3;
+      if (h[i] >= 0.0f) r[m++] = in[i];
+      if ((h[i] > 0.0f && h[j] < 0.0f) || (h[i] < 0.0f && h[j] > 0.0f)) {
+        const float t = h[i] / (h[i] - h[j]);
+        r[m++] = in[i] + (in[j] - in[i]) * t;
+      }
     }
+    if (m < 3) return 0.0f;
+    for (int i = 0; i < m; ++i) e[i] = r[(i + 1) % m] - r[i];
   }
-  if (m < 3) return 0.0f;
-  const double sum = arithmetic == Arithmetic::Single ? double(contour_sum<float>(r, m, n))
-                                                      : contour_sum<double>(r, m, n);
+  const double sum = arithmetic == Arithmetic::Single ? double(contour_sum<float>(r, e, m, n))
+                                                      : contour_sum<double>(r, e, m, n);
   return float(std::min(1.0, std::abs(sum) / (2.0 * std::numbers::pi)));
 }
 

@@ -1,5 +1,6 @@
 #include "solver/gather.h"
 
+#include <algorithm>
 #include <numbers>
 #include <span>
 
@@ -128,8 +129,17 @@ Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroi
   if (analytic) {
     const Vec3 to_source = src.centroid - x;
     const float d2 = glm::dot(to_source, to_source);
-    if (d2 > src.far_distance * src.far_distance && na == src.sample_count) {
-      ff = std::min(1.0f, src.area_per_sample * sums.plain());
+    // Far, and the source wholly and clearly in front of the tangent plane (every point of it
+    // lies within one longest edge of its centroid): no grazing integrand for the rule to miss.
+    const bool far =
+        d2 > src.far_distance * src.far_distance && glm::dot(n, to_source) > src.longest_edge;
+    if (far) {
+      KernelSums coarse;
+      scratch.far_weight.resize(src.coarse_sample.size());
+      add_kernels<true>(src.coarse_sample, 0, src.coarse_sample.size(), x, n, src.normal, 0.0f,
+                        0.0f, scratch.far_weight.data(), coarse);
+      ff = std::clamp(src.richardson_fine * sums.plain() - src.richardson_coarse * coarse.plain(),
+                      0.0f, 1.0f);
     } else {
       const bool close = d2 < src.single_distance * src.single_distance;
       ff = point_to_triangle_form_factor(x, n, src.corner[0], src.corner[1], src.corner[2],

@@ -14,7 +14,8 @@ namespace rad {
 struct GatherScratch {
   std::vector<Segment> segments;
   std::vector<uint8_t> blocked;
-  std::vector<float> weight;  // coarse samples' kernels
+  std::vector<float> weight;      // coarse samples' kernels
+  std::vector<float> far_weight;  // kernels of the far field's coarser samples
   std::vector<uint32_t> active;
   std::vector<uint8_t> coarse_visible;
   SolverStats stats;
@@ -23,9 +24,9 @@ struct GatherScratch {
 struct GatherSettings {
   FormFactorMethod method = FormFactorMethod::Analytic;
   bool shadows = true;
-  float cut = 0.0f;           // absolute intensity-cut level (radiosity units)
+  float cut = 0.0f;  // absolute intensity-cut level (radiosity units)
   float shadow_offset = 0.0f;
-  float inset = 1e-4f;        // fraction of the way to the polygon centroid a point moves
+  float inset = 1e-4f;  // fraction of the way to the polygon centroid a point moves
 };
 
 /// The irradiance-like gain H (radiosity before the receiver's reflectance) that the point `x`

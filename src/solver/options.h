@@ -29,8 +29,8 @@ enum class MidpointRule : uint8_t {
 };
 
 struct SolverOptions {
-  bool shadows = true;          // false: every visibility term is 1 (-noshadows)
-  int sample_grid = 4;          // n = sample_grid^2 samples per source polygon
+  bool shadows = true;  // false: every visibility term is 1 (-noshadows)
+  int sample_grid = 4;  // n = sample_grid^2 samples per source polygon
   FormFactorMethod method = FormFactorMethod::Analytic;
   /// Subdivision limit: split an element when two of its vertices differ by more than
   /// this fraction of the radiosity scale (in any channel).

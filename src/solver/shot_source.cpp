@@ -1,6 +1,7 @@
 #include "solver/shot_source.h"
 
 #include <algorithm>
+#include <limits>
 
 #include "mesh/sample_points.h"
 #include "solver/solver_state.h"
@@ -8,11 +9,10 @@
 namespace rad {
 
 namespace {
-// Where, in longest source edges, single-precision contours stop (relative error measured
-// <= 3e-5 within 3 edges, 3e-4 at 10) and the far field starts (the midpoint rule over 16
-// samples within ~5e-5 beyond 30): tests/solver/gather_test.cpp.
-constexpr float kSingleEdges = 3.0f;
-constexpr float kFarFieldEdges = 30.0f;
+// Where, in longest source edges, single-precision contours stop and the far field starts;
+// errors measured by tests/solver/gather_test.cpp.
+constexpr float kSingleEdges = 6.0f;
+constexpr float kFarFieldEdges = 6.0f;
 }  // namespace
 
 void SampleLanes::push_back(const Vec3& p, const Vec3& u) {
@@ -53,8 +53,23 @@ ShotSource make_shot_source(const SolverState& s, int32_t p) {
     longest = std::max(longest, glm::length(src.corner[(k + 1) % 3] - src.corner[k]));
   }
   src.near_distance = 2.0f * longest / float(s.options.sample_grid);
+  src.longest_edge = longest;
   src.single_distance = kSingleEdges * longest;
   src.far_distance = kFarFieldEdges * longest;
+  const int m = s.options.sample_grid, k = m / 2;
+  if (k >= 1) {
+    for (const Vec3& w : regular_sample_barycentrics(k)) {
+      src.coarse_sample.push_back(src.corner[0] * w.x + src.corner[1] * w.y + src.corner[2] * w.z,
+                                  Vec3(0.0f));
+    }
+    src.coarse_count = size_t(k) * size_t(k);
+    src.coarse_sample.pad();
+    const float m2 = float(m * m), k2 = float(k * k);
+    src.richardson_fine = m2 / (m2 - k2) * src.area_per_sample;
+    src.richardson_coarse = k2 / (m2 - k2) * (src.area / k2);
+  } else {
+    src.far_distance = std::numeric_limits<float>::infinity();  // one sample: no extrapolation
+  }
   src.fine_area_per_sample = src.area / float(s.fine_barycentrics.size());
   src.fine_begin.assign(bary.size() + 1, 0);
   for (size_t c = 0; c < bary.size(); ++c) {

@@ -44,9 +44,16 @@ struct ShotSource {
   // How a receiver gets its form factor, by its distance from the centroid: within
   // single_distance the contour integral in single precision, then in double (see
   // form_factor.h); beyond far_distance, when every sample is in front of it, the exact
-  // integrand's midpoint rule over the samples (relative error ~0.05 (edge / distance)^2).
+  // integrand's midpoint rule over the n samples, Richardson-extrapolated with the same rule
+  // over the k*k samples of a coarser regular split (k = m/2):
+  //   F = (m^2 S_m - k^2 S_k) / (m^2 - k^2),
+  // which cancels the rule's (edge / distance)^2 error term.
   Vec3 centroid{0.0f};
+  float longest_edge = 0.0f;
   float single_distance = 0.0f, far_distance = 0.0f;
+  SampleLanes coarse_sample;  // the k*k points (positions only)
+  size_t coarse_count = 0;
+  float richardson_fine = 0.0f, richardson_coarse = 0.0f;  // m^2/(m^2-k^2) A/n, k^2/(..) A/k^2
   float fine_area_per_sample = 0.0f;
   // Fine samples grouped by the coarse sample whose cell holds them: those of coarse sample c
   // are fine_sample[fine_begin[c] .. fine_begin[c + 1]).
