@@ -1,6 +1,7 @@
 #include "solver/gather.h"
 
 #include <algorithm>
+#include <cstring>
 #include <numbers>
 #include <span>
 
@@ -12,82 +13,80 @@ namespace {
 
 constexpr size_t W = SampleLanes::kLanes;
 
+// W floats as one vector register (GCC vector extension): the kernel loops below keep their
+// running sums in registers, which the auto-vectoriser did not (it stored them back to memory
+// every group).
+using Lanes = float __attribute__((vector_size(W * sizeof(float))));
+
+Lanes load(const float* p) {
+  Lanes v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+Lanes splat(float f) { return Lanes{} + f; }
+
+float lane_sum(const Lanes& v) {  // fixed order: deterministic
+  float t = 0.0f;
+  for (size_t j = 0; j < W; ++j) t += v[j];
+  return t;
+}
+
 // Per-lane partial sums of the kernel weights k, of k times the visible unshot radiosity, and
-// (coarse samples) of the plain integrand cos cos / (pi r^2) without EQ 7's A/n. Kept per lane
-// across calls and added up once, in a fixed order (deterministic).
+// (coarse samples) of the plain integrand cos cos / (pi r^2) without EQ 7's A/n.
 struct KernelSums {
-  float w[W] = {}, r[W] = {}, g[W] = {}, b[W] = {}, p[W] = {};
-  float weight() const {
-    float t = 0.0f;
-    for (size_t j = 0; j < W; ++j) t += w[j];
-    return t;
-  }
-  Vec3 weighted() const {
-    Vec3 t(0.0f);
-    for (size_t j = 0; j < W; ++j) t += Vec3(r[j], g[j], b[j]);
-    return t;
-  }
-  float plain() const {
-    float t = 0.0f;
-    for (size_t j = 0; j < W; ++j) t += p[j];
-    return t;
-  }
+  Lanes w{}, r{}, g{}, b{}, p{};
+  float weight() const { return lane_sum(w); }
+  Vec3 weighted() const { return {lane_sum(r), lane_sum(g), lane_sum(b)}; }
+  float plain() const { return lane_sum(p); }
 };
 
-// sample_kernel over lanes [begin, end) of `s` (whole groups of W) added to `sums`, the
-// unshot radiosity counted with factor `visible` (1 or 0). Coarse samples also write each
-// weight to k[i] and sum the plain integrand. Branch-free with a fixed inner width: each group
-// of W lanes is a few vector instructions.
+// sample_kernel over every lane of `s` added to `sums`. The unshot radiosity of group g (lanes
+// [W g, W (g + 1))) counts with factor group_visible[g] (1 or 0), or 1 when group_visible is
+// null. Coarse samples also write each weight to k[i] and sum the plain integrand. Branch-free:
+// each group of W lanes is a few vector instructions.
 template <bool Coarse>
-void add_kernels(const SampleLanes& s, size_t begin, size_t end, const Vec3& x, const Vec3& n,
-                 const Vec3& n_s, float area_per_sample, float visible, float* k,
-                 KernelSums& sums) {
+KernelSums add_kernels(const SampleLanes& s, const Vec3& x, const Vec3& n, const Vec3& n_s,
+                       float area_per_sample, const float* group_visible, float* k) {
   constexpr float pi = std::numbers::pi_v<float>;
-  // Raw pointers: a store through k could otherwise alias the vectors' own storage.
-  const float* __restrict sx = s.x.data(), * __restrict sy = s.y.data(), * __restrict sz = s.z.data();
-  const float* __restrict sr = s.r.data(), * __restrict sg = s.g.data(), * __restrict sb = s.b.data();
-  const float* __restrict live = s.live.data();
-  float* __restrict kout = k;
-  const float xx = x.x, xy = x.y, xz = x.z, nx = n.x, ny = n.y, nz = n.z;
-  const float mx = -n_s.x, my = -n_s.y, mz = -n_s.z;
-  float* __restrict w = sums.w, * __restrict r = sums.r, * __restrict g = sums.g, * __restrict b = sums.b, * __restrict p = sums.p;
-  for (size_t c = begin; c < end; c += W) {
-#pragma omp simd
-    for (size_t j = 0; j < W; ++j) {
-      const size_t i = c + j;
-      const float dx = sx[i] - xx, dy = sy[i] - xy, dz = sz[i] - xz;
-      const float r2 = dx * dx + dy * dy + dz * dz;
-      const float cr = nx * dx + ny * dy + nz * dz;
-      const float cs = mx * dx + my * dy + mz * dz;
-      // Selects, not branches: lanes that do not face get weight 0 and a harmless divisor (the
-      // compiler will not if-convert a division that might trap).
-      const bool faces = (cr > 0.0f) & (cs > 0.0f) & (r2 > 0.0f);
-      const float mask = faces ? live[i] : 0.0f, d2 = faces ? r2 : 1.0f;
-      const float kv = cr * cs / (d2 * (pi * d2 + area_per_sample)) * mask;
-      if constexpr (Coarse) {
-        p[j] += cr * cs / (pi * d2 * d2) * mask;
-        kout[i] = kv;
-      }
-      const float kvis = kv * visible;
-      w[j] += kv;
-      r[j] += kvis * sr[i];
-      g[j] += kvis * sg[i];
-      b[j] += kvis * sb[i];
+  const Lanes xx = splat(x.x), xy = splat(x.y), xz = splat(x.z);
+  const Lanes nx = splat(n.x), ny = splat(n.y), nz = splat(n.z);
+  const Lanes mx = splat(-n_s.x), my = splat(-n_s.y), mz = splat(-n_s.z);
+  const Lanes zero{}, one = splat(1.0f), a = splat(area_per_sample), pis = splat(pi);
+  KernelSums sums;
+  for (size_t c = 0, group = 0; c < s.size(); c += W, ++group) {
+    const Lanes dx = load(&s.x[c]) - xx, dy = load(&s.y[c]) - xy, dz = load(&s.z[c]) - xz;
+    const Lanes r2 = dx * dx + dy * dy + dz * dz;
+    const Lanes cr = nx * dx + ny * dy + nz * dz;
+    const Lanes cs = mx * dx + my * dy + mz * dz;
+    // Selects, not branches: lanes that do not face get weight 0 and a harmless divisor.
+    const auto faces = (cr > zero) & (cs > zero) & (r2 > zero);
+    const Lanes mask = faces ? load(&s.live[c]) : zero, d2 = faces ? r2 : one;
+    const Lanes kv = cr * cs / (d2 * (pis * d2 + a)) * mask;
+    if constexpr (Coarse) {
+      sums.p += cr * cs / (pis * d2 * d2) * mask;
+      std::memcpy(&k[c], &kv, sizeof kv);
     }
+    const Lanes kvis = group_visible ? kv * group_visible[group] : kv;
+    sums.w += kv;
+    sums.r += kvis * load(&s.r[c]);
+    sums.g += kvis * load(&s.g[c]);
+    sums.b += kvis * load(&s.b[c]);
   }
+  return sums;
 }
 
 // Near field (analytic method): the source's unshot radiosity weighted over the fine samples,
-// each taking the visibility of its coarse sample (scratch.coarse_visible). Returns false when
-// no fine sample faces the receiver.
+// each group taking the visibility of its coarse sample (scratch.coarse_visible). Returns false
+// when no fine sample faces the receiver.
 bool near_field_mean(const Vec3& x, const Vec3& n, const ShotSource& src, GatherScratch& scratch,
                      Vec3* mean) {
-  KernelSums sums;
-  for (size_t c = 0; c + 1 < src.fine_begin.size(); ++c) {
-    add_kernels<false>(src.fine_sample, src.fine_begin[c], src.fine_begin[c + 1], x, n, src.normal,
-                       src.fine_area_per_sample, scratch.coarse_visible[c] ? 1.0f : 0.0f, nullptr,
-                       sums);
-  }
+  scratch.group_visible.resize(src.fine_group_parent.size());
+  for (size_t g = 0; g < src.fine_group_parent.size(); ++g)
+    scratch.group_visible[g] = scratch.coarse_visible[src.fine_group_parent[g]] ? 1.0f : 0.0f;
+  const KernelSums sums = add_kernels<false>(src.fine_sample, x, n, src.normal,
+                                             src.fine_area_per_sample,
+                                             scratch.group_visible.data(), nullptr);
   const float weight = sums.weight();
   if (weight <= 0.0f) return false;
   *mean = sums.weighted() / weight;
@@ -114,8 +113,7 @@ Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroi
   scratch.weight.resize(ns);
   scratch.active.resize(ns);
   float* k = scratch.weight.data();
-  KernelSums sums;
-  add_kernels<true>(sm, 0, ns, x, n, src.normal, src.area_per_sample, 1.0f, k, sums);
+  const KernelSums sums = add_kernels<true>(sm, x, n, src.normal, src.area_per_sample, nullptr, k);
   const float weight_sum = sums.weight();
   const Vec3 unoccluded = sums.weighted();
   size_t na = 0;
@@ -134,10 +132,9 @@ Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroi
     const bool far =
         d2 > src.far_distance * src.far_distance && glm::dot(n, to_source) > src.longest_edge;
     if (far) {
-      KernelSums coarse;
       scratch.far_weight.resize(src.coarse_sample.size());
-      add_kernels<true>(src.coarse_sample, 0, src.coarse_sample.size(), x, n, src.normal, 0.0f,
-                        0.0f, scratch.far_weight.data(), coarse);
+      const KernelSums coarse = add_kernels<true>(src.coarse_sample, x, n, src.normal, 0.0f,
+                                                  nullptr, scratch.far_weight.data());
       ff = std::clamp(src.richardson_fine * sums.plain() - src.richardson_coarse * coarse.plain(),
                       0.0f, 1.0f);
     } else {

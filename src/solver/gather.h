@@ -18,6 +18,7 @@ struct GatherScratch {
   std::vector<float> far_weight;  // kernels of the far field's coarser samples
   std::vector<uint32_t> active;
   std::vector<uint8_t> coarse_visible;
+  std::vector<float> group_visible;  // per group of fine-sample lanes, its coarse visibility
   SolverStats stats;
 };
 

@@ -71,9 +71,7 @@ ShotSource make_shot_source(const SolverState& s, int32_t p) {
     src.far_distance = std::numeric_limits<float>::infinity();  // one sample: no extrapolation
   }
   src.fine_area_per_sample = src.area / float(s.fine_barycentrics.size());
-  src.fine_begin.assign(bary.size() + 1, 0);
   for (size_t c = 0; c < bary.size(); ++c) {
-    src.fine_begin[c] = uint32_t(src.fine_sample.size());
     for (size_t i = 0; i < s.fine_barycentrics.size(); ++i) {
       if (s.fine_parent[i] != c) continue;
       const Vec3& w = s.fine_barycentrics[i];
@@ -81,8 +79,8 @@ ShotSource make_shot_source(const SolverState& s, int32_t p) {
                                 interpolate_at(mesh, &MeshVertex::unshot, w));
     }
     src.fine_sample.pad();
+    src.fine_group_parent.resize(src.fine_sample.size() / SampleLanes::kLanes, uint32_t(c));
   }
-  src.fine_begin[bary.size()] = uint32_t(src.fine_sample.size());
   return src;
 }
 

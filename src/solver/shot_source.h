@@ -55,10 +55,11 @@ struct ShotSource {
   size_t coarse_count = 0;
   float richardson_fine = 0.0f, richardson_coarse = 0.0f;  // m^2/(m^2-k^2) A/n, k^2/(..) A/k^2
   float fine_area_per_sample = 0.0f;
-  // Fine samples grouped by the coarse sample whose cell holds them: those of coarse sample c
-  // are fine_sample[fine_begin[c] .. fine_begin[c + 1]).
+  // Fine samples grouped by the coarse sample whose cell holds them, each group padded to whole
+  // lanes: lanes [kLanes g, kLanes (g + 1)) all lie in coarse sample fine_group_parent[g]'s cell,
+  // so a group takes that sample's visibility whole.
   SampleLanes fine_sample;
-  std::vector<uint32_t> fine_begin;
+  std::vector<uint32_t> fine_group_parent;
 };
 
 /// Freezes polygon p as the source of the next shot: the state's n = m*m regular samples
