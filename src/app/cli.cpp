@@ -27,7 +27,7 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
   std::reverse(args.begin(), args.end());  // CLI11 parses a reversed vector
 
   std::string backend = "embree", method = "analytic", tonemap = "clamp";
-  int samples = 16;
+  int samples = 16, max_samples = 64;
   CLI::App app{
       "rad: diffuse interreflection (radiosity) by progressive shooting with ray-traced\n"
       "vertex-to-source form factors and adaptive subdivision.\n\n"
@@ -73,7 +73,12 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
   app.add_flag("!--no-shadows", c.solver.shadows, "No shadow rays: every visibility term is 1");
   app.add_option("--min-size", c.solver.min_size,
                  "Smallest element edge, scene units (default: scene diagonal / 256)");
-  app.add_option("--samples", samples, "Samples per source polygon (a square: 1, 4, 9, 16, ...)")
+  app.add_option("--samples", samples,
+                 "Fewest samples per source polygon (a square: 1, 4, 9, 16, ...)")
+      ->capture_default_str();
+  app.add_option("--max-samples", max_samples,
+                 "Most samples per source polygon (a square): a big source gets more than "
+                 "--samples, spaced no wider than the initial mesh's elements (scene diagonal / 16)")
       ->capture_default_str();
   app.add_option("--form-factor", method,
                  "analytic (exact unoccluded form factor x sampled visibility) or samples "
@@ -135,11 +140,15 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
     } else {
       throw CLI::ValidationError("--form-factor", "expected analytic or samples, got " + method);
     }
-    const int m = int(std::lround(std::sqrt(double(samples))));
-    if (samples < 1 || m * m != samples) {
-      throw CLI::ValidationError("--samples", "must be a square number (1, 4, 9, 16, ...)");
-    }
-    c.solver.sample_grid = m;
+    const auto grid = [](int n, const char* option) {
+      const int m = int(std::lround(std::sqrt(double(n))));
+      if (n < 1 || m * m != n) {
+        throw CLI::ValidationError(option, "must be a square number (1, 4, 9, 16, ...)");
+      }
+      return m;
+    };
+    c.solver.sample_grid = grid(samples, "--samples");
+    c.solver.max_sample_grid = std::max(grid(max_samples, "--max-samples"), c.solver.sample_grid);
     c.batch_formats.clear();
     for (size_t at = 0; at <= formats.size();) {
       const size_t comma = std::min(formats.find(',', at), formats.size());

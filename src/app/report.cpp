@@ -59,6 +59,7 @@ void write_stats_json(const std::string& path, const CommandLine& cmd, const std
       {"options",
        {{"shadows", s.options.shadows},
         {"samples", s.options.sample_grid * s.options.sample_grid},
+        {"max_samples", s.sample_grids.back().m * s.sample_grids.back().m},
         {"form_factor",
          s.options.method == FormFactorMethod::Analytic ? "analytic" : "samples"},
         {"threshold", s.options.subdivision_threshold},

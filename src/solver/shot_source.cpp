@@ -1,6 +1,7 @@
 #include "solver/shot_source.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "mesh/sample_points.h"
@@ -28,8 +29,14 @@ void SampleLanes::pad() {
   }
 }
 
+const SampleGrid& sample_grid_for(const SolverState& s, float longest_edge) {
+  // The least m whose sample spacing (longest edge / m) is within the initial mesh's size.
+  const float first = float(s.sample_grids.front().m), last = float(s.sample_grids.back().m);
+  const float wanted = s.max_size > 0.0f ? std::ceil(longest_edge / s.max_size) : first;
+  return s.sample_grids[size_t(std::clamp(wanted, first, last) - first)];
+}
+
 ShotSource make_shot_source(const SolverState& s, int32_t p) {
-  const std::vector<Vec3>& bary = s.sample_barycentrics;
   const Triangles& tris = s.hierarchy->triangles;
   const PolygonMesh& mesh = s.mesh.polygons[size_t(p)];
   ShotSource src;
@@ -37,6 +44,13 @@ ShotSource make_shot_source(const SolverState& s, int32_t p) {
   for (int k = 0; k < 3; ++k) src.corner[k] = tris.corners[size_t(p)][k];
   src.normal = tris.normal[size_t(p)];
   src.area = tris.area[size_t(p)];
+  float longest = 0.0f;
+  for (int k = 0; k < 3; ++k) {
+    longest = std::max(longest, glm::length(src.corner[(k + 1) % 3] - src.corner[k]));
+  }
+  src.longest_edge = longest;
+  const SampleGrid& grid = sample_grid_for(s, longest);
+  const std::vector<Vec3>& bary = grid.coarse;
   src.area_per_sample = src.area / float(bary.size());
   for (const Vec3& w : bary) {
     const Vec3 u = interpolate_at(mesh, &MeshVertex::unshot, w);
@@ -48,17 +62,12 @@ ShotSource make_shot_source(const SolverState& s, int32_t p) {
   src.centroid = (src.corner[0] + src.corner[1] + src.corner[2]) * (1.0f / 3.0f);
   src.mean_unshot /= float(bary.size());
   // Near field: closer than two coarse sample spacings (longest edge / m).
-  float longest = 0.0f;
-  for (int k = 0; k < 3; ++k) {
-    longest = std::max(longest, glm::length(src.corner[(k + 1) % 3] - src.corner[k]));
-  }
-  src.near_distance = 2.0f * longest / float(s.options.sample_grid);
-  src.longest_edge = longest;
+  const int m = grid.m, k = m / 2;
+  src.near_distance = 2.0f * longest / float(m);
   src.single_distance = kSingleEdges * longest;
   src.far_distance = kFarFieldEdges * longest;
-  const int m = s.options.sample_grid, k = m / 2;
   if (k >= 1) {
-    for (const Vec3& w : regular_sample_barycentrics(k)) {
+    for (const Vec3& w : grid.half) {
       src.coarse_sample.push_back(src.corner[0] * w.x + src.corner[1] * w.y + src.corner[2] * w.z,
                                   Vec3(0.0f));
     }
@@ -70,11 +79,11 @@ ShotSource make_shot_source(const SolverState& s, int32_t p) {
   } else {
     src.far_distance = std::numeric_limits<float>::infinity();  // one sample: no extrapolation
   }
-  src.fine_area_per_sample = src.area / float(s.fine_barycentrics.size());
+  src.fine_area_per_sample = src.area / float(grid.fine.size());
   for (size_t c = 0; c < bary.size(); ++c) {
-    for (size_t i = 0; i < s.fine_barycentrics.size(); ++i) {
-      if (s.fine_parent[i] != c) continue;
-      const Vec3& w = s.fine_barycentrics[i];
+    for (size_t i = 0; i < grid.fine.size(); ++i) {
+      if (grid.fine_parent[i] != c) continue;
+      const Vec3& w = grid.fine[i];
       src.fine_sample.push_back(src.corner[0] * w.x + src.corner[1] * w.y + src.corner[2] * w.z,
                                 interpolate_at(mesh, &MeshVertex::unshot, w));
     }

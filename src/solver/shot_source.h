@@ -9,6 +9,7 @@
 namespace rad {
 
 struct SolverState;
+struct SampleGrid;
 
 /// Points on a source and the unshot radiosity there, as a structure of arrays padded to whole
 /// groups of kLanes so the kernel loops over them run as fixed-width vector code.
@@ -62,9 +63,13 @@ struct ShotSource {
   std::vector<uint32_t> fine_group_parent;
 };
 
-/// Freezes polygon p as the source of the next shot: the state's n = m*m regular samples
-/// (SPEC §4) and the 16x finer near-field ones, each with the unshot radiosity interpolated from
-/// the vertices of the leaf element it lies in.
+/// The sample grid a source whose longest edge is `longest_edge` gets: the least m in the
+/// state's range whose spacing is within the initial mesh's element size.
+const SampleGrid& sample_grid_for(const SolverState& s, float longest_edge);
+
+/// Freezes polygon p as the source of the next shot: n = m*m regular samples (SPEC §4, m from
+/// sample_grid_for) and the 16x finer near-field ones, each with the unshot radiosity
+/// interpolated from the vertices of the leaf element it lies in.
 ShotSource make_shot_source(const SolverState& s, int32_t p);
 
 }  // namespace rad

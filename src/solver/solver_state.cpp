@@ -79,9 +79,15 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   s.radiosity_scale = total_area > 0.0 ? float(s.emitted_energy / total_area) : 1.0f;
   if (!(s.radiosity_scale > 0.0f)) s.radiosity_scale = 1.0f;
   s.shadow_offset = shadow_offset(h.bounds);
-  s.sample_barycentrics = regular_sample_barycentrics(options.sample_grid);
-  s.fine_barycentrics = regular_sample_barycentrics(4 * options.sample_grid);
-  s.fine_parent = nearest_samples(s.fine_barycentrics, s.sample_barycentrics);
+  for (int m = options.sample_grid; m <= std::max(options.sample_grid, options.max_sample_grid);
+       ++m) {
+    SampleGrid& g = s.sample_grids.emplace_back();
+    g.m = m;
+    g.coarse = regular_sample_barycentrics(m);
+    g.fine = regular_sample_barycentrics(4 * m);
+    g.fine_parent = nearest_samples(g.fine, g.coarse);
+    if (m / 2 >= 1) g.half = regular_sample_barycentrics(m / 2);
+  }
   return s;
 }
 

@@ -35,6 +35,15 @@ struct ShotRecord {
   double unshot_fraction;  // unshot / emitted energy after the shot
 };
 
+/// A source's sample points for an m x m grid, in its own barycentrics.
+struct SampleGrid {
+  int m = 0;
+  std::vector<Vec3> coarse;             // the m*m samples
+  std::vector<Vec3> fine;               // the near-field samples (4x finer grid)
+  std::vector<uint32_t> fine_parent;    // the coarse sample whose cell holds each fine one
+  std::vector<Vec3> half;               // the (m/2)^2 samples of the far field's coarser split
+};
+
 struct SolverState {
   const Hierarchy* hierarchy = nullptr;
   SolverOptions options;
@@ -52,9 +61,8 @@ struct SolverState {
   float min_size = 0.0f;  // smallest element edge
   float max_size = 0.0f;  // largest element edge of the initial mesh
   float shadow_offset = 0.0f;
-  std::vector<Vec3> sample_barycentrics;  // where a source is sampled, in its own barycentrics
-  std::vector<Vec3> fine_barycentrics;    // the near-field samples (4x finer grid)
-  std::vector<uint32_t> fine_parent;      // the coarse sample whose cell holds each fine one
+  /// Where a source is sampled, for each grid size m from options.sample_grid up.
+  std::vector<SampleGrid> sample_grids;
   /// Every shot so far, in order. New vertices made by refinement gather the major ones again;
   /// vertices made by a forced subdivision gather them all, so their radiosity is exact.
   std::vector<ShotSource> shot_log;

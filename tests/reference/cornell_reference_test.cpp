@@ -44,6 +44,9 @@ TEST(CornellReference, DefaultSolveWithinOnePercentMeanOfPathTracedReference) {
   std::printf("per-point values: %s\n", dump.c_str());
   EXPECT_EQ(r.outside, 0u);
   EXPECT_LE(r.all.mean_error, 0.01) << "issue 4 target: mean error <= 1% of the mean radiosity";
+  // The same bound without the light, whose exact emission dominates the mean: measured 1.26%
+  // with 16 samples on every source, 0.79% with big sources sampled as finely as the mesh.
+  EXPECT_LE(r.reflecting.mean_error, 0.01) << "reflecting surfaces alone";
 }
 
 }  // namespace
