@@ -257,7 +257,8 @@ def main():
     # The Cornell box: time to accuracy.
     print("\nCornell box (scenes/cornell_box.des), rad at several settings: time to accuracy")
     crows = []
-    best = None
+    best = None  # fastest run within 1% over all points
+    best_reflecting = None  # fastest run within 1% over the non-emitting points too
     for path in sorted(glob.glob(os.path.join(out, "cornell_*.json"))):
         tag = os.path.basename(path)[:-5]
         j = json.load(open(path))
@@ -291,6 +292,10 @@ def main():
         if err is not None and err <= 1.0 and (best is None or s["total"] < best[0]):
             best = (s["total"], err, f"{j['options']['converge']:g}",
                     f"{j['options']['threshold']:g}")
+        if (err_receivers is not None and err_receivers <= 1.0 and
+                (best_reflecting is None or s["total"] < best_reflecting[0])):
+            best_reflecting = (s["total"], err_receivers, f"{j['options']['converge']:g}",
+                               f"{j['options']['threshold']:g}")
     crows.sort(key=lambda r: float(r[7]))
     if crows:
         print(table(crows, ["converge", "threshold", "threads", "shots", "vertices", "Mrays",
@@ -310,9 +315,12 @@ def main():
     if "no_compare_tool" in m or "no_reference" in m:
         missing = m.get("no_compare_tool") or m.get("no_reference")
         print(f"  mean error: not measured ({missing} missing)")
-    print("  target: mean error ≤ 1% of the displayed radiosity in ≤ 10 s on 2 cores: "
-          + ("-" if best is None else
-             f"{best[0]:.2f} s for {best[1]:.2f}% (--converge {best[2]} --threshold {best[3]})"))
+    def reached(b):
+        return "-" if b is None else f"{b[0]:.2f} s for {b[1]:.2f}% (--converge {b[2]} --threshold {b[3]})"
+    print("  target: mean error ≤ 1% of the displayed radiosity in ≤ 10 s on 2 cores:\n"
+          f"    all points {reached(best)}\n"
+          f"    non-emitting points alone (the light's exact emission left out of the mean) "
+          f"{reached(best_reflecting)}")
     print("  for scale (issue 6): Blender 3.4 Cycles baking the box: 23.5 s for 3.9%, 172 s for 1.8%")
 
 
