@@ -271,6 +271,14 @@ def main():
             at = text.find("non-emitting")
             if at >= 0:
                 err_receivers = first_percent(r"mean error:?\s+([-0-9.]+)%", text[at:])
+        stored = stored_receivers = None
+        stored_path = os.path.join(out, tag + ".stored.compare.txt")
+        if os.path.exists(stored_path):
+            text = open(stored_path).read()
+            stored = first_percent(r"mean error:?\s+([-0-9.]+)%", text)
+            at = text.find("non-emitting")
+            if at >= 0:
+                stored_receivers = first_percent(r"mean error:?\s+([-0-9.]+)%", text[at:])
         cpu = None
         time_path = os.path.join(out, tag + ".time")
         if os.path.exists(time_path):
@@ -288,7 +296,9 @@ def main():
                       f"{j['peak_memory_bytes'] / 2**20:.0f}",
                       f"{j['peak_memory_bytes'] / max(verts, 1):.0f}",
                       "" if err is None else f"{err:.2f}", "" if bias is None else f"{bias:+.2f}",
-                      "" if err_receivers is None else f"{err_receivers:.2f}"])
+                      "" if err_receivers is None else f"{err_receivers:.2f}",
+                      "" if stored is None else f"{stored:.2f}",
+                      "" if stored_receivers is None else f"{stored_receivers:.2f}"])
         if err is not None and err <= 1.0 and (best is None or s["total"] < best[0]):
             best = (s["total"], err, f"{j['options']['converge']:g}",
                     f"{j['options']['threshold']:g}")
@@ -300,9 +310,12 @@ def main():
     if crows:
         print(table(crows, ["converge", "threshold", "threads", "shots", "vertices", "Mrays",
                             "solve s", "total s", "cpu s", "peak MB", "peak B/vertex", "mean error %",
-                            "bias %", "non-emitting %"]))
-        print("  mean error: rad-reference --compare, all reference points (the headline), its "
-              "bias, and the\n  mean error over the points on non-emitting polygons alone; "
+                            "bias %", "non-emitting %", "stored %", "stored non-em. %"]))
+        print("  mean error: rad-reference --compare of the displayed radiosity (B + reflectance x "
+              "Cohen's ambient\n  term, as rad displays it) over all reference points (the "
+              "headline), its bias, and the\n  mean error over the points on non-emitting polygons "
+              "alone; stored: the same two without the\n  ambient term (the radiosity the solver "
+              "holds); "
               "peak: rad's peak RSS;\n  cpu s: user + system time of the whole run (less "
               "sensitive than wall time to other processes)")
     e2e = [b for n, b in solver.items() if n.startswith("solve/cornell_box")]

@@ -43,6 +43,7 @@ void write_stats_json(const std::string& path, const CommandLine& cmd, const std
                       const SeamReport& seams) {
   using nlohmann::json;
   const VisibilityStats& r = s.stats.rays;
+  const Vec3 ambient = ambient_radiosity(s);
   json history = json::array();
   for (const ShotRecord& h : s.history) {
     history.push_back({{"shot", h.shot}, {"source", h.source}, {"seconds", h.seconds},
@@ -78,7 +79,9 @@ void write_stats_json(const std::string& path, const CommandLine& cmd, const std
         {"vertex_evaluations", s.stats.vertex_evaluations}, {"culled", s.stats.culled},
         {"vertices", count_vertices(s.mesh)}, {"elements", count_leaves(s.mesh)},
         {"emitted_energy", s.emitted_energy}, {"absorbed_energy", s.absorbed_energy},
-        {"unshot_fraction", s.unshot_fraction()}}},
+        {"unshot_fraction", s.unshot_fraction()},
+        {"ambient", {ambient.x, ambient.y, ambient.z}},
+        {"ambient_displayed", cmd.ambient}}},
       {"seconds",
        {{"parse", t.parse}, {"build", t.build}, {"solve", t.solve}, {"shoot", s.stats.shoot_seconds},
         {"refine", s.stats.refine_seconds}, {"write", t.write}, {"total", t.total}}},

@@ -29,12 +29,28 @@
 namespace {
 
 int compare(const rad::Hierarchy& h, const std::string& reference_path,
-            const std::string& mesh_path, const std::string& points_path) {
+            const std::string& mesh_path, const std::string& points_path,
+            const std::vector<float>& ambient) {
   using namespace rad;
   const ReferenceSet ref = read_reference_csv_file(reference_path);
-  const PlyMesh mesh = read_radiosity_ply(mesh_path);
+  PlyMesh mesh = read_radiosity_ply(mesh_path);
   const std::vector<int32_t> polygon =
       assign_face_polygons(h.triangles, mesh.position, mesh.indices);
+  if (!ambient.empty()) {
+    // The displayed radiosity, as rad's display makes it: B + reflectance x ambient. Each
+    // vertex takes the reflectance of the polygon of a face using it (rad writes no vertex
+    // shared by two polygons).
+    const Vec3 amb(ambient[0], ambient[1], ambient[2]);
+    std::vector<uint8_t> done(mesh.radiosity.size(), 0);
+    for (size_t i = 0; i < mesh.indices.size(); ++i) {
+      const uint32_t v = mesh.indices[i];
+      const int32_t p = polygon[i / 3];
+      if (done[v] || p < 0) continue;
+      done[v] = 1;
+      const Material& m = h.objects[size_t(h.triangles.object[size_t(p)])].material;
+      mesh.radiosity[v] += m.reflectance * amb;
+    }
+  }
   const ComparisonReport r = compare_to_reference(
       {mesh.position, mesh.radiosity, mesh.indices, polygon}, ref, emitting_polygons(h));
   std::fputs(format_report(r).c_str(), stdout);
@@ -121,6 +137,12 @@ int main(int argc, char** argv) {
   std::string points_path;
   app.add_option("--points-out", points_path, "with --compare: every point's values as CSV")
       ->needs("--compare");
+  std::vector<float> ambient;
+  app.add_option("--ambient", ambient,
+                 "with --compare: add reflectance x this ambient radiosity (R G B) to rad's values, "
+                 "as rad's display does (rad --stats-json gives it as solver.ambient)")
+      ->expected(3)
+      ->needs("--compare");
   CLI11_PARSE(app, argc, argv);
   if (out_path.empty() == mesh_path.empty()) {
     std::fprintf(stderr,
@@ -132,7 +154,7 @@ int main(int argc, char** argv) {
     const rad::Hierarchy h = rad::build_hierarchy(rad::parse_scene_file(scene_path));
     if (threads <= 0) threads = tbb::info::default_concurrency();
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
-    if (!mesh_path.empty()) return compare(h, reference_path, mesh_path, points_path);
+    if (!mesh_path.empty()) return compare(h, reference_path, mesh_path, points_path, ambient);
     return generate(h, scene_path, out_path, po, to, threads);
   } catch (const rad::Error& e) {
     std::fprintf(stderr, "%s\n", e.what());
