@@ -103,7 +103,7 @@ struct StateBytes {
   size_t elements = 0;
   size_t midpoints = 0;
   size_t other = 0;  // per-polygon energies, materials, the history (not the log of shot
-                     // sources the solver may keep: about 0.5 KB per shot)
+                     // sources the solver keeps: 7 KB a shot at 16 samples, 30 KB at 64)
   size_t total() const { return polygon_structs + vertex_arrays + elements + midpoints + other; }
 };
 

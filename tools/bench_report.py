@@ -258,7 +258,7 @@ def main():
     print("\nCornell box (scenes/cornell_box.des), rad at several settings: time to accuracy")
     crows = []
     best = None  # fastest run within 1% over all points
-    best_reflecting = None  # fastest run within 1% over the non-emitting points too
+    best_reflecting = None  # fastest run within 1% over the non-emitting points
     for path in sorted(glob.glob(os.path.join(out, "cornell_*.json"))):
         tag = os.path.basename(path)[:-5]
         j = json.load(open(path))

@@ -74,11 +74,12 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
   app.add_option("--min-size", c.solver.min_size,
                  "Smallest element edge, scene units (default: scene diagonal / 256)");
   app.add_option("--samples", samples,
-                 "Fewest samples per source polygon (a square: 1, 4, 9, 16, ...)")
+                 "Fewest samples per source polygon (a square: 1, 4, 9, 16, ... up to 256)")
       ->capture_default_str();
   app.add_option("--max-samples", max_samples,
-                 "Most samples per source polygon (a square): a big source gets more than "
-                 "--samples, spaced no wider than the initial mesh's elements (scene diagonal / 16)")
+                 "Most samples per source polygon (a square, up to 256): a big source gets more "
+                 "than --samples, as many as bring their spacing within the initial mesh's "
+                 "element size (scene diagonal / 16) or this many; give both to fix the count")
       ->capture_default_str();
   app.add_option("--form-factor", method,
                  "analytic (exact unoccluded form factor x sampled visibility) or samples "
@@ -142,8 +143,8 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
     }
     const auto grid = [](int n, const char* option) {
       const int m = int(std::lround(std::sqrt(double(n))));
-      if (n < 1 || m * m != n) {
-        throw CLI::ValidationError(option, "must be a square number (1, 4, 9, 16, ...)");
+      if (n < 1 || n > 256 || m * m != n) {
+        throw CLI::ValidationError(option, "must be a square number from 1 to 256 (1, 4, 9, 16, ...)");
       }
       return m;
     };

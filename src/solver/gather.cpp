@@ -60,8 +60,9 @@ KernelSums add_kernels(const SampleLanes& s, const Vec3& x, const Vec3& n, const
     const Lanes cr = nx * dx + ny * dy + nz * dz;
     const Lanes cs = mx * dx + my * dy + mz * dz;
     // Selects, not branches: lanes that do not face get weight 0 and a harmless divisor.
-    const auto faces = (cr > zero) & (cs > zero) & (r2 > zero);
-    const Lanes mask = faces ? load(&s.live[c]) : zero, d2 = faces ? r2 : one;
+    const Lanes live = load(&s.live[c]);
+    const auto faces = (cr > zero) & (cs > zero) & (r2 > zero) & (live > zero);
+    const Lanes mask = faces ? live : zero, d2 = faces ? r2 : one;
     const Lanes kv = cr * cs / (d2 * (pis * d2 + a)) * mask;
     if constexpr (Coarse) {
       sums.p += cr * cs / (pis * d2 * d2) * mask;

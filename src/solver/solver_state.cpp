@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <cassert>
 #include <cmath>
 
 #include "mesh/sample_points.h"
@@ -79,6 +80,7 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   s.radiosity_scale = total_area > 0.0 ? float(s.emitted_energy / total_area) : 1.0f;
   if (!(s.radiosity_scale > 0.0f)) s.radiosity_scale = 1.0f;
   s.shadow_offset = shadow_offset(h.bounds);
+  assert(options.sample_grid >= 1 && options.max_sample_grid <= 64);
   for (int m = options.sample_grid; m <= std::max(options.sample_grid, options.max_sample_grid);
        ++m) {
     SampleGrid& g = s.sample_grids.emplace_back();

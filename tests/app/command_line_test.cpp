@@ -119,6 +119,32 @@ TEST(CommandLine, RejectsAnUnknownBackendOrFormatBeforeWorking) {
   EXPECT_EQ(r.err.rfind("error: unknown tone curve 'sepia'", 0), 0u) << r.err;
 }
 
+TEST(CommandLine, SampleCountsAreSquaresUpTo256AndTheMaximumFollowsTheMinimum) {
+  const std::string scene = (kScenes / "parallel_squares.des").string();
+  RadRun r = run_rad("--samples 15 " + scene + " /tmp/x.ply");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("--samples: must be a square number from 1 to 256"), std::string::npos)
+      << r.err;
+  r = run_rad("--max-samples 289 " + scene + " /tmp/x.ply");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("--max-samples: must be a square number from 1 to 256"), std::string::npos)
+      << r.err;
+  const fs::path stats = fs::temp_directory_path() / "rad_test_samples.json";
+  const auto options_of = [&](const std::string& args) {
+    const RadRun run = run_rad(args + " -q --max-shots 1 --stats-json " + stats.string() + " " +
+                               scene + " /tmp/rad_test_samples.ply");
+    EXPECT_EQ(run.code, 0) << run.err;
+    const std::string json = read_file(stats);
+    const size_t at = json.find("\"max_samples\"");
+    return at == std::string::npos ? std::string() : json.substr(at, json.find('\n', at) - at);
+  };
+  EXPECT_EQ(options_of(""), "\"max_samples\": 64,");
+  EXPECT_EQ(options_of("--samples 4 --max-samples 4"), "\"max_samples\": 4,");
+  EXPECT_EQ(options_of("--samples 100"), "\"max_samples\": 100,");
+  fs::remove(stats);
+  fs::remove("/tmp/rad_test_samples.ply");
+}
+
 // Reads a binary PLY's header; returns the vertex and face counts and checks the file size.
 bool complete_ply(const fs::path& p, size_t* vertices) {
   const std::string data = read_file(p);
