@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "core/denormals.h"
 #include "scenegen/scenegen.h"
 #include "visibility/backend.h"
 #include "visibility/grid_backend.h"
@@ -79,6 +80,7 @@ void run(benchmark::State& state, const BenchScene& s, const VisibilityBackend& 
   std::vector<uint8_t> out(kSamples);
   VisibilityStats stats;
   size_t vertex = 0;
+  const ScopedFlushDenormals ftz;  // as the solver sets it around its loops
   for (auto _ : state) {
     backend.occluded(std::span(s.segments).subspan(vertex * kSamples, kSamples), out, stats);
     benchmark::DoNotOptimize(out.data());

@@ -4,6 +4,8 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include "core/denormals.h"
+
 #include "mesh/subdivide.h"
 #include "solver/refine.h"
 #include "solver/shoot.h"
@@ -57,6 +59,7 @@ size_t force_subdivide(SolverState& s, int32_t polygon, const VisibilityBackend&
   const GatherSettings settings = gather_settings(s);
   tbb::enumerable_thread_specific<GatherScratch> scratch;
   tbb::parallel_for(size_t(0), created.size(), [&](size_t i) {
+    const ScopedFlushDenormals ftz;  // as in shoot_to_receivers
     const NewMidpoint& c = created[i];
     MeshVertex& mid = m.vertices[c.vertex];
     mid.irradiance = regather_shots(s, mid.position, uint32_t(polygon), false, vis, settings,

@@ -3,6 +3,8 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include "core/denormals.h"
+
 #include "mesh/subdivide.h"
 #include "solver/shoot.h"
 
@@ -102,6 +104,7 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
     flat.clear();
     for (size_t p = 0; p < np; ++p) flat.insert(flat.end(), exact[p].begin(), exact[p].end());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, flat.size(), 16), [&](const auto& range) {
+      const ScopedFlushDenormals ftz;  // as in shoot_to_receivers
       GatherScratch& sc = scratch.local();
       for (size_t i = range.begin(); i != range.end(); ++i) {
         const ExactVertex& x = flat[i];

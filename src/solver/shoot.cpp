@@ -3,6 +3,8 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include "core/denormals.h"
+
 namespace rad {
 
 GatherSettings gather_settings(const SolverState& s) {
@@ -43,6 +45,7 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
   received.assign(tris.size(), 0);
   tbb::enumerable_thread_specific<GatherScratch> scratch;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, tris.size(), 8), [&](const auto& range) {
+    const ScopedFlushDenormals ftz;  // once per range, not per ray batch (see denormals.h)
     for (size_t p = range.begin(); p != range.end(); ++p) {
       if (int32_t(p) == src.polygon || cannot_receive(tris, p, src)) continue;
       received[p] = 1;
@@ -64,8 +67,10 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
       if (nv < 256) {
         body(0, nv);
       } else {  // a finely subdivided polygon: split its vertices across threads too
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, nv, 64),
-                          [&](const auto& r) { body(r.begin(), r.end()); });
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, nv, 64), [&](const auto& r) {
+          const ScopedFlushDenormals inner;  // another thread may run this range
+          body(r.begin(), r.end());
+        });
       }
     }
   });

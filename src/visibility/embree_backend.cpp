@@ -2,8 +2,6 @@
 
 #include <embree3/rtcore.h>
 #include <fmt/format.h>
-#include <pmmintrin.h>
-#include <xmmintrin.h>
 
 #include <atomic>
 #include <cassert>
@@ -12,6 +10,7 @@
 #include <mutex>
 #include <string>
 
+#include "core/denormals.h"
 #include "core/error.h"
 
 namespace rad {
@@ -38,26 +37,11 @@ struct ErrorSink {
   }
 };
 
-// Embree wants flush-to-zero and denormals-are-zero on every thread that traces; this sets both
-// for the scope and restores the caller's mode afterwards.
-class DenormalsOff {
- public:
-  DenormalsOff() : saved_(_mm_getcsr()) {
-    _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-    _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
-  }
-  ~DenormalsOff() { _mm_setcsr(saved_); }
-  DenormalsOff(const DenormalsOff&) = delete;
-  DenormalsOff& operator=(const DenormalsOff&) = delete;
-
- private:
-  unsigned saved_;
-};
 
 class EmbreeBackend final : public VisibilityBackend {
  public:
   EmbreeBackend(const Hierarchy& h, const VisibilityOptions& options) : packets_(options.packets) {
-    DenormalsOff denormals;
+    const ScopedFlushDenormals denormals;
     device_ = rtcNewDevice(nullptr);
     if (!device_) {
       throw Error(fmt::format("cannot create the Embree device (error {})",
@@ -112,7 +96,7 @@ class EmbreeBackend final : public VisibilityBackend {
   void occluded(std::span<const Segment> segments, std::span<uint8_t> out,
                 VisibilityStats& stats) const override {
     assert(out.size() == segments.size());
-    DenormalsOff denormals;
+    const ScopedFlushDenormals denormals;
     if (packets_) {
       trace_packets(segments, out);
     } else {
