@@ -160,14 +160,20 @@ Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroi
   if (st.shadows && cut) scratch.stats.intensity_cuts += na;
   const bool traced = st.shadows && !cut && na > 0;
   if (traced) {
-    scratch.segments.resize(na);
+    // One fan from the receiver to the active samples, both ends moved off their surfaces as
+    // make_shadow_segment does.
+    scratch.end_x.resize(na), scratch.end_y.resize(na), scratch.end_z.resize(na);
     scratch.blocked.resize(na);
+    const Vec3 lift = src.normal * st.shadow_offset;
     for (size_t j = 0; j < na; ++j) {
-      scratch.segments[j] =
-          make_shadow_segment(x, n, sm.point(scratch.active[j]), src.normal, st.shadow_offset);
+      const uint32_t i = scratch.active[j];
+      scratch.end_x[j] = sm.x[i] + lift.x;
+      scratch.end_y[j] = sm.y[i] + lift.y;
+      scratch.end_z[j] = sm.z[i] + lift.z;
     }
-    vis.occluded(std::span<const Segment>(scratch.segments.data(), na),
-                 std::span<uint8_t>(scratch.blocked.data(), na), scratch.stats.rays);
+    const SegmentFan fan{x + n * st.shadow_offset, scratch.end_x.data(), scratch.end_y.data(),
+                         scratch.end_z.data(), na};
+    vis.occluded_fan(fan, std::span<uint8_t>(scratch.blocked.data(), na), scratch.stats.rays);
   }
 
   Vec3 mean;

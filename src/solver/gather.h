@@ -12,7 +12,7 @@ namespace rad {
 /// Per-thread buffers and counters for gathering; reused across vertices (no allocation in
 /// the loop once sized).
 struct GatherScratch {
-  std::vector<Segment> segments;
+  std::vector<float> end_x, end_y, end_z;  // far ends of the shadow fan
   std::vector<uint8_t> blocked;
   std::vector<float> weight;      // coarse samples' kernels
   std::vector<float> far_weight;  // kernels of the far field's coarser samples

@@ -55,6 +55,11 @@ class VisibilityBackend {
   /// `stats` is the calling thread's own record: the call adds to it.
   virtual void occluded(std::span<const Segment> segments, std::span<uint8_t> out,
                         VisibilityStats& stats) const = 0;
+  /// The same for the segments of a fan, out.size() == fan.size: a backend that can trace
+  /// straight from the arrays overrides it (Embree fills its packets without the Segment
+  /// copies); the default makes the segments, a chunk at a time on the stack, for occluded().
+  virtual void occluded_fan(const SegmentFan& fan, std::span<uint8_t> out,
+                            VisibilityStats& stats) const;
 };
 
 /// Builds the chosen backend over the hierarchy's triangles (the grid backend also uses its

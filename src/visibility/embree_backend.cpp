@@ -109,6 +109,22 @@ class EmbreeBackend final : public VisibilityBackend {
     if (errors_.failed.load(std::memory_order_relaxed)) report_trace_error();
   }
 
+  void occluded_fan(const SegmentFan& fan, std::span<uint8_t> out,
+                    VisibilityStats& stats) const override {
+    assert(out.size() == fan.size);
+    if (!packets_) {
+      VisibilityBackend::occluded_fan(fan, out, stats);
+      return;
+    }
+    const ScopedFlushDenormals denormals;
+    trace_fan_packets(fan, out);
+    uint64_t blocked = 0;
+    for (uint8_t o : out) blocked += o;
+    stats.rays += fan.size;
+    stats.occluded += blocked;
+    if (errors_.failed.load(std::memory_order_relaxed)) report_trace_error();
+  }
+
  private:
   void check(const char* what) {
     if (errors_.failed.load()) {
@@ -183,6 +199,44 @@ class EmbreeBackend final : public VisibilityBackend {
         rays.dir_x[k] = s.direction.x;
         rays.dir_y[k] = s.direction.y;
         rays.dir_z[k] = s.direction.z;
+        rays.tfar[k] = 1.0f;
+      }
+      rtcOccluded16(valid, scene_, &context, &rays);
+      for (size_t k = 0; k < count; ++k) out[begin + k] = rays.tfar[k] == kNegInf ? 1 : 0;
+    }
+  }
+
+  // trace_packets for a fan: the origin fills the packet once, each packet then takes only the
+  // far ends, straight from the fan's arrays (no Segment copies to transpose).
+  void trace_fan_packets(const SegmentFan& fan, std::span<uint8_t> out) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(64) int valid[kPacket];
+    alignas(64) RTCRay16 rays;
+    for (size_t k = 0; k < kPacket; ++k) {
+      rays.org_x[k] = fan.origin.x;
+      rays.org_y[k] = fan.origin.y;
+      rays.org_z[k] = fan.origin.z;
+      rays.tnear[k] = 0.0f;
+      rays.time[k] = 0.0f;
+      rays.mask[k] = ~0u;
+      rays.id[k] = unsigned(k);
+      rays.flags[k] = 0;
+    }
+    for (size_t begin = 0; begin < fan.size; begin += kPacket) {
+      const size_t count = std::min(kPacket, fan.size - begin);
+      if (count == 1) {
+        const Segment s = fan.segment(begin);
+        trace_single(std::span<const Segment>(&s, 1), out.subspan(begin, 1));
+        continue;
+      }
+      for (size_t k = 0; k < kPacket; ++k) {
+        const size_t i = begin + (k < count ? k : 0);
+        valid[k] = k < count ? -1 : 0;
+        rays.dir_x[k] = fan.x[i] - fan.origin.x;
+        rays.dir_y[k] = fan.y[i] - fan.origin.y;
+        rays.dir_z[k] = fan.z[i] - fan.origin.z;
         rays.tfar[k] = 1.0f;
       }
       rtcOccluded16(valid, scene_, &context, &rays);

@@ -14,6 +14,18 @@ struct Segment {
   Vec3 direction;  // unnormalised: origin + direction is the far end
 };
 
+/// The solver's batch: segments from one receiving point to many source points, the far ends as
+/// three coordinate arrays. Segment i runs from `origin` to (x[i], y[i], z[i]); both ends are
+/// already moved off their surfaces (make_shadow_segment's offsets).
+struct SegmentFan {
+  Vec3 origin;
+  const float* x = nullptr;
+  const float* y = nullptr;
+  const float* z = nullptr;
+  size_t size = 0;
+  Segment segment(size_t i) const { return {origin, Vec3(x[i], y[i], z[i]) - origin}; }
+};
+
 /// Distance by which both ends of a shadow segment leave their surfaces, scaled to the scene
 /// (a fixed fraction of the bounding-box diagonal) so it is far above float rounding of the
 /// coordinates and far below any feature size.

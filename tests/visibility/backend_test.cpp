@@ -169,6 +169,36 @@ TEST_P(BackendTest, BatchSizesOneToFortyMatchOneAtATime) {
   }
 }
 
+// A fan (one origin, far ends as arrays: the solver's batch) gives exactly the answers of its
+// segments one at a time, for every batch size across packet boundaries, and counts them.
+TEST_P(BackendTest, FanMatchesItsSegmentsOneAtATime) {
+  Hierarchy h = build_hierarchy(make_triangle_soup(500, 5));
+  auto b = make(h);
+  const std::vector<Segment> s = random_segments(h, 40, 11);
+  const Vec3 origin = s[0].origin;
+  std::vector<float> x, y, z;
+  std::vector<uint8_t> one;
+  for (const Segment& seg : s) {
+    const Vec3 end = seg.origin + seg.direction;
+    x.push_back(end.x), y.push_back(end.y), z.push_back(end.z);
+    one.push_back(run(*b, {between(origin, end)})[0]);
+  }
+  size_t blocked = 0;
+  for (uint8_t o : one) blocked += o;
+  EXPECT_GT(blocked, 0u);
+  EXPECT_LT(blocked, s.size());
+  for (size_t n = 0; n <= s.size(); ++n) {
+    VisibilityStats stats;
+    std::vector<uint8_t> out(n, 7);
+    b->occluded_fan({origin, x.data(), y.data(), z.data(), n}, out, stats);
+    EXPECT_EQ(out, std::vector<uint8_t>(one.begin(), one.begin() + n)) << "fan of " << n;
+    EXPECT_EQ(stats.rays, n);
+    size_t expected = 0;
+    for (size_t k = 0; k < n; ++k) expected += one[k];
+    EXPECT_EQ(stats.occluded, expected);
+  }
+}
+
 TEST_P(BackendTest, ConcurrentCallsFromTbbGiveTheSameAnswers) {
   Hierarchy h = build_hierarchy(make_triangle_soup(2000, 6));
   auto b = make(h);
