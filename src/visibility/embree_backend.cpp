@@ -168,15 +168,9 @@ class EmbreeBackend final : public VisibilityBackend {
     }
   }
 
-  // Groups of up to 16 consecutive segments (the solver's vertex → n samples share an origin) as
-  // one coherent packet; a partial last packet is masked by `valid`. The fields Embree does not
-  // write (tnear, time, mask, id, flags) are filled once per call, not once per packet.
-  void trace_packets(std::span<const Segment> segments, std::span<uint8_t> out) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    alignas(64) int valid[kPacket];
-    alignas(64) RTCRay16 rays;
+  // The packet fields Embree does not write (tnear, time, mask, id, flags): filled once per
+  // call, not once per packet.
+  static void fill_constant_fields(RTCRay16& rays) {
     for (size_t k = 0; k < kPacket; ++k) {
       rays.tnear[k] = 0.0f;
       rays.time[k] = 0.0f;
@@ -184,21 +178,27 @@ class EmbreeBackend final : public VisibilityBackend {
       rays.id[k] = unsigned(k);
       rays.flags[k] = 0;
     }
-    for (size_t begin = 0; begin < segments.size(); begin += kPacket) {
-      const size_t count = std::min(kPacket, segments.size() - begin);
+  }
+
+  // Rays [0, n) in coherent packets of up to 16 (the solver's vertex → n samples share an
+  // origin); a partial last packet is masked by `valid`, a lone last ray goes alone.
+  // set_lane(k, i) writes ray i's lane-k fields that vary (the rest of `rays` is set already).
+  template <typename SetLane, typename Single>
+  void trace_in_packets(size_t n, RTCRay16& rays, SetLane set_lane, Single single,
+                        std::span<uint8_t> out) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(64) int valid[kPacket];
+    for (size_t begin = 0; begin < n; begin += kPacket) {
+      const size_t count = std::min(kPacket, n - begin);
       if (count == 1) {
-        trace_single(segments.subspan(begin, 1), out.subspan(begin, 1));
+        single(begin);
         continue;
       }
       for (size_t k = 0; k < kPacket; ++k) {
-        const Segment& s = segments[begin + (k < count ? k : 0)];
         valid[k] = k < count ? -1 : 0;
-        rays.org_x[k] = s.origin.x;
-        rays.org_y[k] = s.origin.y;
-        rays.org_z[k] = s.origin.z;
-        rays.dir_x[k] = s.direction.x;
-        rays.dir_y[k] = s.direction.y;
-        rays.dir_z[k] = s.direction.z;
+        set_lane(k, begin + (k < count ? k : 0));
         rays.tfar[k] = 1.0f;
       }
       rtcOccluded16(valid, scene_, &context, &rays);
@@ -206,42 +206,45 @@ class EmbreeBackend final : public VisibilityBackend {
     }
   }
 
-  // trace_packets for a fan: the origin fills the packet once, each packet then takes only the
-  // far ends, straight from the fan's arrays (no Segment copies to transpose).
-  void trace_fan_packets(const SegmentFan& fan, std::span<uint8_t> out) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    alignas(64) int valid[kPacket];
+  void trace_packets(std::span<const Segment> segments, std::span<uint8_t> out) const {
     alignas(64) RTCRay16 rays;
+    fill_constant_fields(rays);
+    trace_in_packets(
+        segments.size(), rays,
+        [&](size_t k, size_t i) {
+          const Segment& s = segments[i];
+          rays.org_x[k] = s.origin.x;
+          rays.org_y[k] = s.origin.y;
+          rays.org_z[k] = s.origin.z;
+          rays.dir_x[k] = s.direction.x;
+          rays.dir_y[k] = s.direction.y;
+          rays.dir_z[k] = s.direction.z;
+        },
+        [&](size_t i) { trace_single(segments.subspan(i, 1), out.subspan(i, 1)); }, out);
+  }
+
+  // A fan: the origin fills the packet once, each packet then takes only the far ends,
+  // straight from the fan's arrays (no Segment copies to transpose).
+  void trace_fan_packets(const SegmentFan& fan, std::span<uint8_t> out) const {
+    alignas(64) RTCRay16 rays;
+    fill_constant_fields(rays);
     for (size_t k = 0; k < kPacket; ++k) {
       rays.org_x[k] = fan.origin.x;
       rays.org_y[k] = fan.origin.y;
       rays.org_z[k] = fan.origin.z;
-      rays.tnear[k] = 0.0f;
-      rays.time[k] = 0.0f;
-      rays.mask[k] = ~0u;
-      rays.id[k] = unsigned(k);
-      rays.flags[k] = 0;
     }
-    for (size_t begin = 0; begin < fan.size; begin += kPacket) {
-      const size_t count = std::min(kPacket, fan.size - begin);
-      if (count == 1) {
-        const Segment s = fan.segment(begin);
-        trace_single(std::span<const Segment>(&s, 1), out.subspan(begin, 1));
-        continue;
-      }
-      for (size_t k = 0; k < kPacket; ++k) {
-        const size_t i = begin + (k < count ? k : 0);
-        valid[k] = k < count ? -1 : 0;
-        rays.dir_x[k] = fan.x[i] - fan.origin.x;
-        rays.dir_y[k] = fan.y[i] - fan.origin.y;
-        rays.dir_z[k] = fan.z[i] - fan.origin.z;
-        rays.tfar[k] = 1.0f;
-      }
-      rtcOccluded16(valid, scene_, &context, &rays);
-      for (size_t k = 0; k < count; ++k) out[begin + k] = rays.tfar[k] == kNegInf ? 1 : 0;
-    }
+    trace_in_packets(
+        fan.size, rays,
+        [&](size_t k, size_t i) {
+          rays.dir_x[k] = fan.x[i] - fan.origin.x;
+          rays.dir_y[k] = fan.y[i] - fan.origin.y;
+          rays.dir_z[k] = fan.z[i] - fan.origin.z;
+        },
+        [&](size_t i) {
+          const Segment s = fan.segment(i);
+          trace_single(std::span<const Segment>(&s, 1), out.subspan(i, 1));
+        },
+        out);
   }
 
   mutable ErrorSink errors_;
