@@ -122,7 +122,7 @@ StateBytes solver_state_bytes(const SolverState& s) {
   b.other = sizeof(SolverState) + heap_bytes(s.materials) + heap_bytes(s.unshot_energy) +
             heap_bytes(s.history);
   for (const SampleGrid& g : s.sample_grids) {
-    b.other += heap_bytes(g.coarse) + heap_bytes(g.fine) + heap_bytes(g.fine_parent) +
+    b.other += heap_bytes(g.coarse) + heap_bytes(g.fine) + heap_bytes(g.fine_begin) +
                heap_bytes(g.half);
   }
   return b;

@@ -70,6 +70,19 @@ def table(rows, header, align=None):
     return "\n".join(lines)
 
 
+def comparison(path):
+    """(mean error %, bias %, mean error % over non-emitting points) from a rad-reference
+    --compare output, each None when missing."""
+    if not os.path.exists(path):
+        return None, None, None
+    text = open(path).read()
+    err = first_percent(r"mean error:?\s+([-0-9.]+)%", text)
+    bias = first_percent(r"bias:?\s+([-+0-9.]+)%", text)
+    at = text.find("non-emitting")
+    receivers = first_percent(r"mean error:?\s+([-0-9.]+)%", text[at:]) if at >= 0 else None
+    return err, bias, receivers
+
+
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else "out/bench"
     m = machine(os.path.join(out, "machine.txt"))
@@ -262,23 +275,8 @@ def main():
     for path in sorted(glob.glob(os.path.join(out, "cornell_*.json"))):
         tag = os.path.basename(path)[:-5]
         j = json.load(open(path))
-        err = bias = err_receivers = None
-        cmp_path = os.path.join(out, tag + ".compare.txt")
-        if os.path.exists(cmp_path):
-            text = open(cmp_path).read()
-            err = first_percent(r"mean error:?\s+([-0-9.]+)%", text)
-            bias = first_percent(r"bias:?\s+([-+0-9.]+)%", text)
-            at = text.find("non-emitting")
-            if at >= 0:
-                err_receivers = first_percent(r"mean error:?\s+([-0-9.]+)%", text[at:])
-        stored = stored_receivers = None
-        stored_path = os.path.join(out, tag + ".stored.compare.txt")
-        if os.path.exists(stored_path):
-            text = open(stored_path).read()
-            stored = first_percent(r"mean error:?\s+([-0-9.]+)%", text)
-            at = text.find("non-emitting")
-            if at >= 0:
-                stored_receivers = first_percent(r"mean error:?\s+([-0-9.]+)%", text[at:])
+        err, bias, err_receivers = comparison(os.path.join(out, tag + ".compare.txt"))
+        stored, _, stored_receivers = comparison(os.path.join(out, tag + ".stored.compare.txt"))
         cpu = None
         time_path = os.path.join(out, tag + ".time")
         if os.path.exists(time_path):

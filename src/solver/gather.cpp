@@ -42,12 +42,13 @@ struct KernelSums {
 };
 
 // sample_kernel over every lane of `s` added to `sums`. The unshot radiosity of group g (lanes
-// [W g, W (g + 1))) counts with factor group_visible[g] (1 or 0), or 1 when group_visible is
-// null. Coarse samples also write each weight to k[i] and sum the plain integrand. Branch-free:
-// each group of W lanes is a few vector instructions.
+// [W g, W (g + 1))) counts with factor visible[parent[g]] (1 or 0), or 1 when visible is null.
+// Coarse samples also write each weight to k[i] and sum the plain integrand. Branch-free: each
+// group of W lanes is a few vector instructions.
 template <bool Coarse>
 KernelSums add_kernels(const SampleLanes& s, const Vec3& x, const Vec3& n, const Vec3& n_s,
-                       float area_per_sample, const float* group_visible, float* k) {
+                       float area_per_sample, const float* visible, const uint32_t* parent,
+                       float* k) {
   constexpr float pi = std::numbers::pi_v<float>;
   const Lanes xx = splat(x.x), xy = splat(x.y), xz = splat(x.z);
   const Lanes nx = splat(n.x), ny = splat(n.y), nz = splat(n.z);
@@ -68,7 +69,7 @@ KernelSums add_kernels(const SampleLanes& s, const Vec3& x, const Vec3& n, const
       sums.p += cr * cs / (pis * d2 * d2) * mask;
       std::memcpy(&k[c], &kv, sizeof kv);
     }
-    const Lanes kvis = group_visible ? kv * group_visible[group] : kv;
+    const Lanes kvis = visible ? kv * visible[parent[group]] : kv;
     sums.w += kv;
     sums.r += kvis * load(&s.r[c]);
     sums.g += kvis * load(&s.g[c]);
@@ -78,16 +79,13 @@ KernelSums add_kernels(const SampleLanes& s, const Vec3& x, const Vec3& n, const
 }
 
 // Near field (analytic method): the source's unshot radiosity weighted over the fine samples,
-// each group taking the visibility of its coarse sample (scratch.coarse_visible). Returns false
+// each group taking the visibility of its coarse sample (coarse_visible, 1 or 0). Returns false
 // when no fine sample faces the receiver.
-bool near_field_mean(const Vec3& x, const Vec3& n, const ShotSource& src, GatherScratch& scratch,
-                     Vec3* mean) {
-  scratch.group_visible.resize(src.fine_group_parent.size());
-  for (size_t g = 0; g < src.fine_group_parent.size(); ++g)
-    scratch.group_visible[g] = scratch.coarse_visible[src.fine_group_parent[g]] ? 1.0f : 0.0f;
-  const KernelSums sums = add_kernels<false>(src.fine_sample, x, n, src.normal,
-                                             src.fine_area_per_sample,
-                                             scratch.group_visible.data(), nullptr);
+bool near_field_mean(const Vec3& x, const Vec3& n, const ShotSource& src,
+                     const float* coarse_visible, Vec3* mean) {
+  const KernelSums sums =
+      add_kernels<false>(src.fine_sample, x, n, src.normal, src.fine_area_per_sample,
+                         coarse_visible, src.fine_group_parent.data(), nullptr);
   const float weight = sums.weight();
   if (weight <= 0.0f) return false;
   *mean = sums.weighted() / weight;
@@ -114,7 +112,8 @@ Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroi
   scratch.weight.resize(ns);
   scratch.active.resize(ns);
   float* k = scratch.weight.data();
-  const KernelSums sums = add_kernels<true>(sm, x, n, src.normal, src.area_per_sample, nullptr, k);
+  const KernelSums sums =
+      add_kernels<true>(sm, x, n, src.normal, src.area_per_sample, nullptr, nullptr, k);
   const float weight_sum = sums.weight();
   const Vec3 unoccluded = sums.weighted();
   size_t na = 0;
@@ -135,7 +134,7 @@ Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroi
     if (far) {
       scratch.far_weight.resize(src.coarse_sample.size());
       const KernelSums coarse = add_kernels<true>(src.coarse_sample, x, n, src.normal, 0.0f,
-                                                  nullptr, scratch.far_weight.data());
+                                                  nullptr, nullptr, scratch.far_weight.data());
       ff = std::clamp(src.richardson_fine * sums.plain() - src.richardson_coarse * coarse.plain(),
                       0.0f, 1.0f);
     } else {
@@ -160,30 +159,28 @@ Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroi
   if (st.shadows && cut) scratch.stats.intensity_cuts += na;
   const bool traced = st.shadows && !cut && na > 0;
   if (traced) {
-    // One fan from the receiver to the active samples, both ends moved off their surfaces as
-    // make_shadow_segment does.
+    // One fan from the receiver to the active samples' shadow-ray ends.
     scratch.end_x.resize(na), scratch.end_y.resize(na), scratch.end_z.resize(na);
     scratch.blocked.resize(na);
-    const Vec3 lift = src.normal * st.shadow_offset;
     for (size_t j = 0; j < na; ++j) {
       const uint32_t i = scratch.active[j];
-      scratch.end_x[j] = sm.x[i] + lift.x;
-      scratch.end_y[j] = sm.y[i] + lift.y;
-      scratch.end_z[j] = sm.z[i] + lift.z;
+      scratch.end_x[j] = src.end_x[i];
+      scratch.end_y[j] = src.end_y[i];
+      scratch.end_z[j] = src.end_z[i];
     }
-    const SegmentFan fan{x + n * st.shadow_offset, scratch.end_x.data(), scratch.end_y.data(),
-                         scratch.end_z.data(), na};
+    const SegmentFan fan{off_surface(x, n, st.shadow_offset), scratch.end_x.data(),
+                         scratch.end_y.data(), scratch.end_z.data(), na};
     vis.occluded_fan(fan, std::span<uint8_t>(scratch.blocked.data(), na), scratch.stats.rays);
   }
 
   Vec3 mean;
   if (near) {
-    scratch.coarse_visible.assign(ns, 1);
+    scratch.coarse_visible.assign(ns, 1.0f);
     if (traced) {
       for (size_t j = 0; j < na; ++j)
-        scratch.coarse_visible[scratch.active[j]] = !scratch.blocked[j];
+        scratch.coarse_visible[scratch.active[j]] = scratch.blocked[j] ? 0.0f : 1.0f;
     }
-    if (near_field_mean(x, n, src, scratch, &mean)) return mean * ff;
+    if (near_field_mean(x, n, src, scratch.coarse_visible.data(), &mean)) return mean * ff;
   }
   if (analytic && weight_sum <= 0.0f) {
     // The visible part of the source holds no sample (a sliver above the tangent plane): take it

@@ -17,8 +17,7 @@ struct GatherScratch {
   std::vector<float> weight;      // coarse samples' kernels
   std::vector<float> far_weight;  // kernels of the far field's coarser samples
   std::vector<uint32_t> active;
-  std::vector<uint8_t> coarse_visible;
-  std::vector<float> group_visible;  // per group of fine-sample lanes, its coarse visibility
+  std::vector<float> coarse_visible;  // near field: 1 or 0 per coarse sample
   SolverStats stats;
 };
 

@@ -6,6 +6,7 @@
 
 #include "mesh/sample_points.h"
 #include "solver/solver_state.h"
+#include "visibility/segment.h"
 
 namespace rad {
 
@@ -54,8 +55,11 @@ ShotSource make_shot_source(const SolverState& s, int32_t p) {
   src.area_per_sample = src.area / float(bary.size());
   for (const Vec3& w : bary) {
     const Vec3 u = interpolate_at(mesh, &MeshVertex::unshot, w);
-    src.sample.push_back(src.corner[0] * w.x + src.corner[1] * w.y + src.corner[2] * w.z, u);
+    const Vec3 q = src.corner[0] * w.x + src.corner[1] * w.y + src.corner[2] * w.z;
+    src.sample.push_back(q, u);
     src.mean_unshot += u;
+    const Vec3 end = off_surface(q, src.normal, s.shadow_offset);
+    src.end_x.push_back(end.x), src.end_y.push_back(end.y), src.end_z.push_back(end.z);
   }
   src.sample_count = bary.size();
   src.sample.pad();
@@ -81,8 +85,7 @@ ShotSource make_shot_source(const SolverState& s, int32_t p) {
   }
   src.fine_area_per_sample = src.area / float(grid.fine.size());
   for (size_t c = 0; c < bary.size(); ++c) {
-    for (size_t i = 0; i < grid.fine.size(); ++i) {
-      if (grid.fine_parent[i] != c) continue;
+    for (size_t i = grid.fine_begin[c]; i < grid.fine_begin[c + 1]; ++i) {
       const Vec3& w = grid.fine[i];
       src.fine_sample.push_back(src.corner[0] * w.x + src.corner[1] * w.y + src.corner[2] * w.z,
                                 interpolate_at(mesh, &MeshVertex::unshot, w));

@@ -35,6 +35,9 @@ struct ShotSource {
   float area_per_sample = 0.0f;  // A / n
   SampleLanes sample;            // sample points on the source and their unshot radiosity
   size_t sample_count = 0;       // samples in `sample` (its lanes less the padding)
+  // Where the shadow rays to the samples end: each sample moved off the source (off_surface
+  // with the state's shadow offset), once per shot rather than once per receiving vertex.
+  std::vector<float> end_x, end_y, end_z;
   Vec3 mean_unshot{0.0f};        // area-weighted mean unshot radiosity over the samples
   bool major = false;            // carried >= major_shot_fraction of the emitted energy
   // Near field: receivers closer to the source's plane than `near_distance` weight its unshot

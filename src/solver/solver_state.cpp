@@ -86,8 +86,15 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
     SampleGrid& g = s.sample_grids.emplace_back();
     g.m = m;
     g.coarse = regular_sample_barycentrics(m);
-    g.fine = regular_sample_barycentrics(4 * m);
-    g.fine_parent = nearest_samples(g.fine, g.coarse);
+    const std::vector<Vec3> fine = regular_sample_barycentrics(4 * m);
+    const std::vector<uint32_t> parent = nearest_samples(fine, g.coarse);
+    g.fine_begin.push_back(0);
+    for (uint32_t c = 0; c < g.coarse.size(); ++c) {
+      for (size_t i = 0; i < fine.size(); ++i) {
+        if (parent[i] == c) g.fine.push_back(fine[i]);
+      }
+      g.fine_begin.push_back(uint32_t(g.fine.size()));
+    }
     if (m / 2 >= 1) g.half = regular_sample_barycentrics(m / 2);
   }
   return s;

@@ -39,8 +39,10 @@ struct ShotRecord {
 struct SampleGrid {
   int m = 0;
   std::vector<Vec3> coarse;             // the m*m samples
-  std::vector<Vec3> fine;               // the near-field samples (4x finer grid)
-  std::vector<uint32_t> fine_parent;    // the coarse sample whose cell holds each fine one
+  /// The near-field samples (4x finer grid) grouped by the coarse sample whose cell holds
+  /// them: those of coarse sample c are fine[fine_begin[c] .. fine_begin[c + 1]).
+  std::vector<Vec3> fine;
+  std::vector<uint32_t> fine_begin;
   std::vector<Vec3> half;               // the (m/2)^2 samples of the far field's coarser split
 };
 

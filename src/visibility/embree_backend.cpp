@@ -102,11 +102,7 @@ class EmbreeBackend final : public VisibilityBackend {
     } else {
       trace_single(segments, out);
     }
-    uint64_t blocked = 0;
-    for (uint8_t o : out) blocked += o;
-    stats.rays += segments.size();
-    stats.occluded += blocked;
-    if (errors_.failed.load(std::memory_order_relaxed)) report_trace_error();
+    count(out, stats);
   }
 
   void occluded_fan(const SegmentFan& fan, std::span<uint8_t> out,
@@ -118,14 +114,19 @@ class EmbreeBackend final : public VisibilityBackend {
     }
     const ScopedFlushDenormals denormals;
     trace_fan_packets(fan, out);
+    count(out, stats);
+  }
+
+ private:
+  // Adds a traced batch's answers to the caller's counters; reports an error Embree raised.
+  void count(std::span<const uint8_t> out, VisibilityStats& stats) const {
     uint64_t blocked = 0;
     for (uint8_t o : out) blocked += o;
-    stats.rays += fan.size;
+    stats.rays += out.size();
     stats.occluded += blocked;
     if (errors_.failed.load(std::memory_order_relaxed)) report_trace_error();
   }
 
- private:
   void check(const char* what) {
     if (errors_.failed.load()) {
       std::string message = fmt::format("{} while {}", errors_.first, what);

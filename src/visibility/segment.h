@@ -16,7 +16,7 @@ struct Segment {
 
 /// The solver's batch: segments from one receiving point to many source points, the far ends as
 /// three coordinate arrays. Segment i runs from `origin` to (x[i], y[i], z[i]); both ends are
-/// already moved off their surfaces (make_shadow_segment's offsets).
+/// already moved off their surfaces (off_surface).
 struct SegmentFan {
   Vec3 origin;
   const float* x = nullptr;
@@ -31,13 +31,17 @@ struct SegmentFan {
 /// coordinates and far below any feature size.
 float shadow_offset(const Aabb& scene_bounds);
 
+/// A segment end: point p moved `offset` along `normal` (towards the side it faces).
+inline Vec3 off_surface(const Vec3& p, const Vec3& normal, float offset) {
+  return p + normal * offset;
+}
+
 /// Segment from a receiving point (with its surface normal) to a point on a source (with the
-/// source's normal), each end moved `offset` along its own normal towards the side it faces.
+/// source's normal), each end moved off its surface.
 inline Segment make_shadow_segment(const Vec3& from, const Vec3& from_normal, const Vec3& to,
                                    const Vec3& to_normal, float offset) {
-  Vec3 a = from + from_normal * offset;
-  Vec3 b = to + to_normal * offset;
-  return {a, b - a};
+  const Vec3 a = off_surface(from, from_normal, offset);
+  return {a, off_surface(to, to_normal, offset) - a};
 }
 
 }  // namespace rad

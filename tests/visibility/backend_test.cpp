@@ -5,6 +5,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <random>
 #include <vector>
 
@@ -145,6 +146,20 @@ std::vector<Segment> random_segments(const Hierarchy& h, size_t n, uint32_t seed
   return s;
 }
 
+// For every n from 0 to one.size(): trace(n, out, stats) answers the first n queries as `one`
+// (their answers one at a time) does, and counts n rays and their blocked ones.
+template <typename Trace>
+void expect_every_prefix_matches(const std::vector<uint8_t>& one, Trace trace) {
+  for (size_t n = 0; n <= one.size(); ++n) {
+    VisibilityStats stats;
+    std::vector<uint8_t> out;
+    trace(n, out, stats);
+    EXPECT_EQ(out, std::vector<uint8_t>(one.begin(), one.begin() + n)) << "batch of " << n;
+    EXPECT_EQ(stats.rays, n);
+    EXPECT_EQ(stats.occluded, size_t(std::count(one.begin(), one.begin() + n, uint8_t{1})));
+  }
+}
+
 TEST_P(BackendTest, BatchSizesOneToFortyMatchOneAtATime) {
   Hierarchy h = build_hierarchy(make_triangle_soup(500, 5));
   auto b = make(h);
@@ -157,16 +172,9 @@ TEST_P(BackendTest, BatchSizesOneToFortyMatchOneAtATime) {
   for (uint8_t o : one) blocked += o;
   EXPECT_GT(blocked, 0u);
   EXPECT_LT(blocked, s.size());
-  for (size_t n = 1; n <= s.size(); ++n) {
-    VisibilityStats stats;
-    std::vector<Segment> batch(s.begin(), s.begin() + n);
-    std::vector<uint8_t> out = run(*b, batch, &stats);
-    EXPECT_EQ(out, std::vector<uint8_t>(one.begin(), one.begin() + n)) << "batch of " << n;
-    EXPECT_EQ(stats.rays, n);
-    size_t expected = 0;
-    for (size_t k = 0; k < n; ++k) expected += one[k];
-    EXPECT_EQ(stats.occluded, expected);
-  }
+  expect_every_prefix_matches(one, [&](size_t n, std::vector<uint8_t>& out, VisibilityStats& st) {
+    out = run(*b, std::vector<Segment>(s.begin(), s.begin() + n), &st);
+  });
 }
 
 // A fan (one origin, far ends as arrays: the solver's batch) gives exactly the answers of its
@@ -187,16 +195,10 @@ TEST_P(BackendTest, FanMatchesItsSegmentsOneAtATime) {
   for (uint8_t o : one) blocked += o;
   EXPECT_GT(blocked, 0u);
   EXPECT_LT(blocked, s.size());
-  for (size_t n = 0; n <= s.size(); ++n) {
-    VisibilityStats stats;
-    std::vector<uint8_t> out(n, 7);
-    b->occluded_fan({origin, x.data(), y.data(), z.data(), n}, out, stats);
-    EXPECT_EQ(out, std::vector<uint8_t>(one.begin(), one.begin() + n)) << "fan of " << n;
-    EXPECT_EQ(stats.rays, n);
-    size_t expected = 0;
-    for (size_t k = 0; k < n; ++k) expected += one[k];
-    EXPECT_EQ(stats.occluded, expected);
-  }
+  expect_every_prefix_matches(one, [&](size_t n, std::vector<uint8_t>& out, VisibilityStats& st) {
+    out.assign(n, 7);
+    b->occluded_fan({origin, x.data(), y.data(), z.data(), n}, out, st);
+  });
 }
 
 TEST_P(BackendTest, ConcurrentCallsFromTbbGiveTheSameAnswers) {
