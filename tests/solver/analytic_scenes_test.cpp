@@ -181,7 +181,8 @@ TEST_P(AnalyticScenes, FurnaceBoxConvergesToEOverOneMinusRho) {
 // A closed furnace with a block standing on its floor: every visible point still sees only
 // surfaces of radiosity E/(1 - rho), so any systematic shortfall is visibility lost by the
 // sampling of the sources (16 regular samples on each big face alias against the block:
-// measured mean -0.33%, worst vertex 3.5% dark; see SolverOptions::max_sample_grid).
+// measured mean -0.33%, worst vertex 3.5% dark, which fails the worst-vertex bound; see
+// SolverOptions::max_sample_grid).
 TEST(FurnaceWithABlock, KeepsEOverOneMinusRhoEverywhereVisible) {
   SceneDescription d;
   const float rho = 0.5f, e = 1.0f;
@@ -210,8 +211,11 @@ TEST(FurnaceWithABlock, KeepsEOverOneMinusRhoEverywhereVisible) {
   }
   std::printf("furnace with a block: %zu vertices, mean error %+.3f%%, worst %.3f%%\n", n,
               100 * sum / double(n), 100 * worst);
-  EXPECT_LE(std::abs(sum / double(n)), 0.003);
-  EXPECT_LE(worst, 0.025);
+  // The bounds every analytic scene here is held to (issue 4: mean 0.5%, worst 2%); the furnace
+  // without a block meets the tighter 0.5% everywhere, but the block's base edges are contact
+  // lines where a vertex's limit depends on the side it is approached from.
+  EXPECT_LE(std::abs(sum / double(n)), 0.005);
+  EXPECT_LE(worst, 0.02);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllBackends, AnalyticScenes,
