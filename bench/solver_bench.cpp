@@ -121,10 +121,11 @@ StateBytes solver_state_bytes(const SolverState& s) {
   }
   b.other = sizeof(SolverState) + heap_bytes(s.materials) + heap_bytes(s.unshot_energy) +
             heap_bytes(s.history);
-  for (const SampleGrid& g : s.sample_grids) {
-    b.other += heap_bytes(g.coarse) + heap_bytes(g.fine) + heap_bytes(g.fine_begin) +
-               heap_bytes(g.half);
-  }
+  for (const auto& g : s.barycentric_grids) b.other += heap_bytes(g);
+  const Clusters& k = s.clusters;
+  b.other += heap_bytes(k.first) + heap_bytes(k.polygons) + heap_bytes(k.cluster_of) +
+             heap_bytes(k.edge_first) + heap_bytes(k.edge_a) + heap_bytes(k.edge_b) +
+             k.size() * (2 * sizeof(Vec3) + 7 * sizeof(float) + sizeof(Aabb) + 1);
   return b;
 }
 

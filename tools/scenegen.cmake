@@ -5,3 +5,6 @@ target_link_libraries(rad_scenegen PUBLIC rad_scene PRIVATE rad_warnings rad_opt
 
 add_executable(rad-gen ${CMAKE_CURRENT_LIST_DIR}/gen_scene.cpp)
 target_link_libraries(rad-gen PRIVATE rad_scenegen CLI11::CLI11 fmt::fmt rad_warnings)
+
+add_executable(rad-tessellate ${CMAKE_CURRENT_LIST_DIR}/tessellate.cpp)
+target_link_libraries(rad-tessellate PRIVATE rad_scenegen CLI11::CLI11 fmt::fmt rad_warnings)

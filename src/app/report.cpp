@@ -60,7 +60,9 @@ void write_stats_json(const std::string& path, const CommandLine& cmd, const std
       {"options",
        {{"shadows", s.options.shadows},
         {"samples", s.options.sample_grid * s.options.sample_grid},
-        {"max_samples", s.sample_grids.back().m * s.sample_grids.back().m},
+        {"max_samples", std::max(s.options.sample_grid, s.options.max_sample_grid) *
+                            std::max(s.options.sample_grid, s.options.max_sample_grid)},
+        {"clusters", s.clusters.size()},
         {"form_factor",
          s.options.method == FormFactorMethod::Analytic ? "analytic" : "samples"},
         {"threshold", s.options.subdivision_threshold},

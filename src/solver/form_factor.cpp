@@ -26,7 +26,55 @@ T contour_sum(const Vec3* r, const Vec3* e, int m, const Vec3& n) {
   return sum;
 }
 
+template <typename T>
+T outline_sum(const Vec3& x, const Vec3& n, const Vec3* a, const Vec3* b, size_t count,
+              const Vec3& axis) {
+  using V = glm::vec<3, T>;
+  const V nn(n), xx(x);
+  // Polar angle frame in the tangent plane: f points from x to the line where it meets the
+  // surface's plane, g = n x f.
+  V f = glm::cross(glm::cross(nn, V(axis)), nn);
+  const T fl = glm::length(f);
+  V g(0);
+  const bool frame = fl > T(1e-6);
+  if (frame) {
+    f /= fl;
+    if (glm::dot(f, V(axis)) > T(0)) f = -f;  // x is above the surface: towards it is down
+    g = glm::cross(nn, f);
+  }
+  auto polar = [&](const V& r) { return std::atan2(glm::dot(r, g), glm::dot(r, f)); };
+  T sum = 0, closing = 0;
+  for (size_t i = 0; i < count; ++i) {
+    V p = V(a[i]) - xx, q = V(b[i]) - xx;
+    const T hp = glm::dot(p, nn), hq = glm::dot(q, nn);
+    if (hp <= T(0) && hq <= T(0)) continue;
+    V e = V(b[i]) - V(a[i]);
+    if (hq <= T(0)) {  // leaves the front half-space
+      q = p + (q - p) * (hp / (hp - hq));
+      e = q - p;
+      if (frame) closing -= polar(q);
+    } else if (hp <= T(0)) {  // enters it
+      p = p + (q - p) * (hp / (hp - hq));
+      e = q - p;
+      if (frame) closing += polar(p);
+    }
+    const V cr = glm::cross(p, e);
+    const T len = glm::length(cr);
+    if (len <= T(0)) continue;
+    sum += std::atan2(len, glm::dot(p, q)) * glm::dot(nn, cr) / len;
+  }
+  return sum + closing;
+}
+
 }  // namespace
+
+float point_to_outline_form_factor(const Vec3& x, const Vec3& n, const Vec3* a, const Vec3* b,
+                                   size_t count, const Vec3& axis, Arithmetic arithmetic) {
+  const double sum = arithmetic == Arithmetic::Single
+                         ? double(outline_sum<float>(x, n, a, b, count, axis))
+                         : outline_sum<double>(x, n, a, b, count, axis);
+  return float(std::min(1.0, std::abs(sum) / (2.0 * std::numbers::pi)));
+}
 
 float point_to_triangle_form_factor(const Vec3& x, const Vec3& n, const Vec3& a, const Vec3& b,
                                     const Vec3& c, Arithmetic arithmetic) {

@@ -22,6 +22,19 @@ enum class Arithmetic { Single, Double };
 float point_to_triangle_form_factor(const Vec3& x, const Vec3& n, const Vec3& a, const Vec3& b,
                                     const Vec3& c, Arithmetic arithmetic = Arithmetic::Double);
 
+/// Unoccluded form factor from a differential area at `x` with unit normal `n` to a surface
+/// bounded by the directed edges a[i] -> b[i] (in any order: contour integrals add up), which x
+/// must see from the front everywhere (receiver_side == +1 in gather.h). The surface is clipped to the
+/// half-space in front of x: each edge is cut where it crosses the tangent plane, and the part
+/// of the clipped boundary that runs in the tangent plane, whose contour term is only its
+/// change of polar angle about n, is the sum over crossings of +-(polar angle), entering minus
+/// leaving, so no loops need building. `axis` is the surface's mean normal: the polar angles
+/// are measured from the foot of x on the line where the two planes meet, which keeps them on
+/// one branch. Result in [0, 1].
+float point_to_outline_form_factor(const Vec3& x, const Vec3& n, const Vec3* a, const Vec3* b,
+                                   size_t count, const Vec3& axis,
+                                   Arithmetic arithmetic = Arithmetic::Double);
+
 /// The EQ 7 weight of one source sample (Wallace, Elmquist, Haines, SIGGRAPH 1989):
 ///   cos(theta_r) cos(theta_s) / (pi r^2 + A/n),
 /// 0 when the sample is behind the receiver or the receiver behind the sample's source.

@@ -33,7 +33,7 @@ float lane_sum(const Lanes& v) {  // fixed order: deterministic
 }
 
 // Per-lane partial sums of the kernel weights k, of k times the visible unshot radiosity, and
-// (coarse samples) of the plain integrand cos cos / (pi r^2) without EQ 7's A/n.
+// (coarse samples) of the plain integrand A cos cos / (pi r^2) without EQ 7's regularising A.
 struct KernelSums {
   Lanes w{}, r{}, g{}, b{}, p{};
   float weight() const { return lane_sum(w); }
@@ -41,32 +41,31 @@ struct KernelSums {
   float plain() const { return lane_sum(p); }
 };
 
-// sample_kernel over every lane of `s` added to `sums`. The unshot radiosity of group g (lanes
+// The EQ 7 weight A_i cos cos / (r^2 (pi r^2 + A_i)) of every lane of `s` (each sample with its
+// own normal and area, 0 for padding) added to `sums`. The unshot radiosity of group g (lanes
 // [W g, W (g + 1))) counts with factor visible[parent[g]] (1 or 0), or 1 when visible is null.
 // Coarse samples also write each weight to k[i] and sum the plain integrand. Branch-free: each
 // group of W lanes is a few vector instructions.
 template <bool Coarse>
-KernelSums add_kernels(const SampleLanes& s, const Vec3& x, const Vec3& n, const Vec3& n_s,
-                       float area_per_sample, const float* visible, const uint32_t* parent,
-                       float* k) {
+KernelSums add_kernels(const SampleLanes& s, const Vec3& x, const Vec3& n, const float* visible,
+                       const uint32_t* parent, float* k) {
   constexpr float pi = std::numbers::pi_v<float>;
   const Lanes xx = splat(x.x), xy = splat(x.y), xz = splat(x.z);
   const Lanes nx = splat(n.x), ny = splat(n.y), nz = splat(n.z);
-  const Lanes mx = splat(-n_s.x), my = splat(-n_s.y), mz = splat(-n_s.z);
-  const Lanes zero{}, one = splat(1.0f), a = splat(area_per_sample), pis = splat(pi);
+  const Lanes zero{}, one = splat(1.0f), pis = splat(pi);
   KernelSums sums;
   for (size_t c = 0, group = 0; c < s.size(); c += W, ++group) {
     const Lanes dx = load(&s.x[c]) - xx, dy = load(&s.y[c]) - xy, dz = load(&s.z[c]) - xz;
     const Lanes r2 = dx * dx + dy * dy + dz * dz;
     const Lanes cr = nx * dx + ny * dy + nz * dz;
-    const Lanes cs = mx * dx + my * dy + mz * dz;
+    const Lanes cs = -(load(&s.nx[c]) * dx + load(&s.ny[c]) * dy + load(&s.nz[c]) * dz);
+    const Lanes a = load(&s.area[c]);
     // Selects, not branches: lanes that do not face get weight 0 and a harmless divisor.
-    const Lanes live = load(&s.live[c]);
-    const auto faces = (cr > zero) & (cs > zero) & (r2 > zero) & (live > zero);
-    const Lanes mask = faces ? live : zero, d2 = faces ? r2 : one;
-    const Lanes kv = cr * cs / (d2 * (pis * d2 + a)) * mask;
+    const auto faces = (cr > zero) & (cs > zero) & (r2 > zero) & (a > zero);
+    const Lanes d2 = faces ? r2 : one, num = faces ? a * cr * cs : zero;
+    const Lanes kv = num / (d2 * (pis * d2 + a));
     if constexpr (Coarse) {
-      sums.p += cr * cs / (pis * d2 * d2) * mask;
+      sums.p += num / (pis * d2 * d2);
       std::memcpy(&k[c], &kv, sizeof kv);
     }
     const Lanes kvis = visible ? kv * visible[parent[group]] : kv;
@@ -83,9 +82,8 @@ KernelSums add_kernels(const SampleLanes& s, const Vec3& x, const Vec3& n, const
 // when no fine sample faces the receiver.
 bool near_field_mean(const Vec3& x, const Vec3& n, const ShotSource& src,
                      const float* coarse_visible, Vec3* mean) {
-  const KernelSums sums =
-      add_kernels<false>(src.fine_sample, x, n, src.normal, src.fine_area_per_sample,
-                         coarse_visible, src.fine_group_parent.data(), nullptr);
+  const KernelSums sums = add_kernels<false>(src.fine_sample, x, n, coarse_visible,
+                                             src.fine_group_parent.data(), nullptr);
   const float weight = sums.weight();
   if (weight <= 0.0f) return false;
   *mean = sums.weighted() / weight;
@@ -94,13 +92,25 @@ bool near_field_mean(const Vec3& x, const Vec3& n, const ShotSource& src,
 
 }  // namespace
 
+int receiver_side(const ShotSource& src, const Vec3& x) {
+  const Vec3 d = x - src.centroid;
+  const float h = glm::dot(d, src.axis);
+  if (src.planar) return h > 0.0f ? 1 : -1;
+  const float len = glm::length(d);
+  if (!(len > 0.0f)) return 0;
+  const float cp = h / len, sp = std::sqrt(std::max(0.0f, 1.0f - cp * cp));
+  if (len * (cp * src.cone_cos - sp * src.cone_sin) + src.offset_lo > 0.0f) return 1;
+  const float upper = (cp >= src.cone_cos ? len : len * (cp * src.cone_cos + sp * src.cone_sin));
+  return upper + src.offset_hi <= 0.0f ? -1 : 0;
+}
+
 Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid,
                         const ShotSource& src, const VisibilityBackend& vis,
                         const GatherSettings& st, GatherScratch& scratch) {
   const Vec3 x = x_vertex + (centroid - x_vertex) * st.inset;
-  // One-sided source: a receiver behind its plane gets nothing.
-  const float height = glm::dot(x - src.corner[0], src.normal);
-  if (height <= 0.0f) {
+  // One-sided source: a receiver behind every one of its triangles gets nothing.
+  const int side = receiver_side(src, x);
+  if (side < 0) {
     ++scratch.stats.culled;
     return Vec3(0.0f);
   }
@@ -112,8 +122,7 @@ Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroi
   scratch.weight.resize(ns);
   scratch.active.resize(ns);
   float* k = scratch.weight.data();
-  const KernelSums sums =
-      add_kernels<true>(sm, x, n, src.normal, src.area_per_sample, nullptr, nullptr, k);
+  const KernelSums sums = add_kernels<true>(sm, x, n, nullptr, nullptr, k);
   const float weight_sum = sums.weight();
   const Vec3 unoccluded = sums.weighted();
   size_t na = 0;
@@ -122,25 +131,24 @@ Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroi
     na += k[i] > 0.0f ? 1 : 0;
   }
 
-  const bool analytic = st.method == FormFactorMethod::Analytic;
+  // The exact form factor needs x in front of every triangle of the source; a curved source
+  // seen from near its own surface falls back to the samples' EQ 7 sum.
+  const bool analytic = st.method == FormFactorMethod::Analytic && side > 0;
   float ff = 0.0f;
   if (analytic) {
     const Vec3 to_source = src.centroid - x;
     const float d2 = glm::dot(to_source, to_source);
     // Far, and the source wholly and clearly in front of the tangent plane (every point of it
-    // lies within one longest edge of its centroid): no grazing integrand for the rule to miss.
+    // lies within one extent of its centroid): no grazing integrand for the rule to miss.
     const bool far =
-        d2 > src.far_distance * src.far_distance && glm::dot(n, to_source) > src.longest_edge;
+        d2 > src.far_distance * src.far_distance && glm::dot(n, to_source) > src.extent;
     if (far) {
-      scratch.far_weight.resize(src.coarse_sample.size());
-      const KernelSums coarse = add_kernels<true>(src.coarse_sample, x, n, src.normal, 0.0f,
-                                                  nullptr, nullptr, scratch.far_weight.data());
-      ff = std::clamp(src.richardson_fine * sums.plain() - src.richardson_coarse * coarse.plain(),
-                      0.0f, 1.0f);
+      ff = std::clamp(sums.plain(), 0.0f, 1.0f);
     } else {
       const bool close = d2 < src.single_distance * src.single_distance;
-      ff = point_to_triangle_form_factor(x, n, src.corner[0], src.corner[1], src.corner[2],
-                                         close ? Arithmetic::Single : Arithmetic::Double);
+      ff = point_to_outline_form_factor(x, n, src.edge_a.data(), src.edge_b.data(),
+                                        src.edge_a.size(), src.axis,
+                                        close ? Arithmetic::Single : Arithmetic::Double);
     }
   }
   if (analytic ? ff <= 0.0f : na == 0) {
@@ -150,9 +158,10 @@ Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroi
   ++scratch.stats.vertex_evaluations;
 
   // Gain = scale * sum(k * dB * visibility): the exact form factor over the weights' sum, or
-  // EQ 7's A/n.
-  const float scale = analytic ? (weight_sum > 0.0f ? ff / weight_sum : 0.0f) : src.area_per_sample;
-  const bool near = analytic && !src.fine_sample.empty() && height < src.near_distance;
+  // EQ 7 as it stands (the areas are in the weights).
+  const float scale = analytic ? (weight_sum > 0.0f ? ff / weight_sum : 0.0f) : 1.0f;
+  const bool near = analytic && !src.fine_sample.empty() &&
+                    glm::dot(x - src.centroid, src.axis) < src.near_distance;
 
   // Visibility of the coarse samples: traced, or all visible without shadows or below the cut.
   const bool cut = max_component(glm::abs(unoccluded * scale)) < st.cut;  // |.|: negative edits

@@ -15,7 +15,6 @@ struct GatherScratch {
   std::vector<float> end_x, end_y, end_z;  // far ends of the shadow fan
   std::vector<uint8_t> blocked;
   std::vector<float> weight;      // coarse samples' kernels
-  std::vector<float> far_weight;  // kernels of the far field's coarser samples
   std::vector<uint32_t> active;
   std::vector<float> coarse_visible;  // near field: 1 or 0 per coarse sample
   SolverStats stats;
@@ -28,6 +27,10 @@ struct GatherSettings {
   float shadow_offset = 0.0f;
   float inset = 1e-4f;  // fraction of the way to the polygon centroid a point moves
 };
+
+/// Where x lies against every triangle of the source, conservatively: +1 in front of all, -1
+/// behind all (or on their plane), 0 unknown (a curved source seen from near its surface).
+int receiver_side(const ShotSource& src, const Vec3& x);
 
 /// The irradiance-like gain H (radiosity before the receiver's reflectance) that the point `x`
 /// with unit normal `n` on a receiving polygon whose centroid is `centroid` gets from `src`.

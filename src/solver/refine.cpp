@@ -25,7 +25,7 @@ Vec3 regather_shots(const SolverState& s, const Vec3& x, uint32_t polygon, bool 
   const Vec3 n = tris.normal[polygon], centroid = polygon_centroid(tris, polygon);
   Vec3 all(0.0f), major(0.0f);
   for (const ShotSource& k : s.shot_log) {
-    if (k.polygon == int32_t(polygon) || (major_only && !k.major)) continue;
+    if ((major_only && !k.major) || !may_receive(s, polygon, k)) continue;
     const Vec3 g = gather_from_source(x, n, centroid, k, vis, settings, scratch);
     all += g;
     if (k.major) major += g;

@@ -21,22 +21,18 @@ Vec3 polygon_centroid(const Triangles& t, size_t p) {
   return (c[0] + c[1] + c[2]) * (1.0f / 3.0f);
 }
 
-namespace {
-
-// True when no point of polygon p can see the front of the source, or the source lies
-// entirely behind p's plane.
-bool cannot_receive(const Triangles& t, size_t p, const ShotSource& src) {
+bool may_receive(const SolverState& s, size_t p, const ShotSource& src) {
+  if (src.planar && s.clusters.cluster_of[p] == uint32_t(src.cluster)) return false;
+  const Triangles& t = s.hierarchy->triangles;
   const auto& c = t.corners[p];
   bool any_in_front = false;
-  for (const Vec3& q : c) any_in_front |= glm::dot(q - src.corner[0], src.normal) > 0.0f;
-  if (!any_in_front) return true;
+  for (const Vec3& q : c) any_in_front |= receiver_side(src, q) >= 0;
+  if (!any_in_front) return false;
+  // The source's box against p's plane: its farthest corner in front.
   const Vec3 n = t.normal[p];
-  bool source_in_front = false;
-  for (const Vec3& q : src.corner) source_in_front |= glm::dot(q - c[0], n) > 0.0f;
-  return !source_in_front;
+  const Vec3 half = src.box.extent() * 0.5f;
+  return glm::dot(src.box.center() - c[0], n) + glm::dot(half, glm::abs(n)) > 0.0f;
 }
-
-}  // namespace
 
 void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,
                         bool major, std::vector<uint8_t>& received) {
@@ -47,7 +43,7 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
   tbb::parallel_for(tbb::blocked_range<size_t>(0, tris.size(), 8), [&](const auto& range) {
     const ScopedFlushDenormals ftz;  // once per range, not per ray batch (see denormals.h)
     for (size_t p = range.begin(); p != range.end(); ++p) {
-      if (int32_t(p) == src.polygon || cannot_receive(tris, p, src)) continue;
+      if (!may_receive(s, p, src)) continue;
       received[p] = 1;
       PolygonMesh& mesh = s.mesh.polygons[p];
       const Vec3 n = tris.normal[p], centroid = polygon_centroid(tris, p);

@@ -15,6 +15,10 @@ GatherSettings gather_settings(const SolverState& s);
 /// Centroid of polygon p.
 Vec3 polygon_centroid(const Triangles& t, size_t p);
 
+/// False when no point of polygon p can gain from `src`: p belongs to the planar cluster that
+/// shoots, or lies behind all of it, or all of it lies behind p's plane.
+bool may_receive(const SolverState& s, size_t p, const ShotSource& src);
+
 /// Shoots `src` (whose unshot radiosity the caller has already cleared) to every vertex of every
 /// other polygon, in parallel over polygons and their vertices (TBB). Each vertex gets
 /// H += dH, unshot += rho * dH and shot = dH. received[p] is set to 1 for polygons that may have

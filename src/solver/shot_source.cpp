@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include "mesh/sample_points.h"
 #include "solver/solver_state.h"
@@ -11,88 +12,156 @@
 namespace rad {
 
 namespace {
-// Where, in longest source edges, single-precision contours stop and the far field starts;
-// errors measured by tests/solver/gather_test.cpp.
-constexpr float kSingleEdges = 6.0f;
-constexpr float kFarFieldEdges = 6.0f;
+// Where, in source extents, single-precision contours stop and where the midpoint rule takes
+// over; errors measured by tests/solver/gather_test.cpp.
+constexpr float kSingleExtents = 6.0f;
+constexpr float kFarFieldExtents = 24.0f;
+// Fine points per sample, about.
+constexpr int kFinePerSample = 16;
+
+struct FinePoint {
+  Vec3 position, normal, unshot;
+  float area;
+};
+
+// Splits points[lo, hi) into `groups` strata of about equal area by median cuts along the
+// longest axis of their box, writing each point's stratum to stratum_of.
+void stratify(std::vector<FinePoint>& points, size_t lo, size_t hi, uint32_t groups,
+              uint32_t first_group, std::vector<uint32_t>& order, std::vector<uint32_t>& stratum_of) {
+  if (groups <= 1) {
+    for (size_t i = lo; i < hi; ++i) stratum_of[order[i]] = first_group;
+    return;
+  }
+  Aabb box;
+  double total = 0.0;
+  for (size_t i = lo; i < hi; ++i) box.extend(points[order[i]].position), total += points[order[i]].area;
+  const Vec3 e = box.extent();
+  const int axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
+  std::sort(order.begin() + long(lo), order.begin() + long(hi), [&](uint32_t a, uint32_t b) {
+    const float pa = points[a].position[axis], pb = points[b].position[axis];
+    return pa < pb || (pa == pb && a < b);
+  });
+  const uint32_t left = groups / 2;
+  const double target = total * double(left) / double(groups);
+  size_t mid = lo;
+  double acc = 0.0;
+  while (mid < hi && acc + 0.5 * points[order[mid]].area < target) acc += points[order[mid++]].area;
+  mid = std::clamp(mid, lo + left, hi - (groups - left));  // each stratum keeps a point
+  stratify(points, lo, mid, left, first_group, order, stratum_of);
+  stratify(points, mid, hi, groups - left, first_group + left, order, stratum_of);
+}
+
 }  // namespace
 
-void SampleLanes::push_back(const Vec3& p, const Vec3& u) {
+void SampleLanes::push_back(const Vec3& p, const Vec3& n, float a, const Vec3& u) {
   x.push_back(p.x), y.push_back(p.y), z.push_back(p.z);
+  nx.push_back(n.x), ny.push_back(n.y), nz.push_back(n.z);
+  area.push_back(a);
   r.push_back(u.x), g.push_back(u.y), b.push_back(u.z);
-  live.push_back(1.0f);
 }
 
 void SampleLanes::pad() {
-  while (size() % kLanes != 0) {
-    push_back(Vec3(0.0f), Vec3(0.0f));
-    live.back() = 0.0f;
-  }
+  while (size() % kLanes != 0) push_back(Vec3(0.0f), Vec3(0.0f, 0.0f, 1.0f), 0.0f, Vec3(0.0f));
 }
 
-const SampleGrid& sample_grid_for(const SolverState& s, float longest_edge) {
-  // The least m whose sample spacing (longest edge / m) is within the initial mesh's size.
-  const float first = float(s.sample_grids.front().m), last = float(s.sample_grids.back().m);
-  const float wanted = s.max_size > 0.0f ? std::ceil(longest_edge / s.max_size) : first;
-  return s.sample_grids[size_t(std::clamp(wanted, first, last) - first)];
+int sample_grid_for(const SolverState& s, float extent) {
+  const float first = float(s.options.sample_grid);
+  const float last = float(std::max(s.options.sample_grid, s.options.max_sample_grid));
+  const float wanted = s.max_size > 0.0f ? std::ceil(extent / s.max_size) : first;
+  return int(std::clamp(wanted, first, last));
 }
 
-ShotSource make_shot_source(const SolverState& s, int32_t p) {
+ShotSource make_shot_source(const SolverState& s, int32_t c) {
   const Triangles& tris = s.hierarchy->triangles;
-  const PolygonMesh& mesh = s.mesh.polygons[size_t(p)];
+  const Clusters& k = s.clusters;
+  const size_t ci = size_t(c);
   ShotSource src;
-  src.polygon = p;
-  for (int k = 0; k < 3; ++k) src.corner[k] = tris.corners[size_t(p)][k];
-  src.normal = tris.normal[size_t(p)];
-  src.area = tris.area[size_t(p)];
-  float longest = 0.0f;
-  for (int k = 0; k < 3; ++k) {
-    longest = std::max(longest, glm::length(src.corner[(k + 1) % 3] - src.corner[k]));
+  src.cluster = c;
+  src.planar = k.planar[ci];
+  src.centroid = k.centroid[ci], src.axis = k.axis[ci];
+  src.cone_cos = k.cone_cos[ci], src.cone_sin = k.cone_sin[ci];
+  src.offset_lo = k.offset_lo[ci], src.offset_hi = k.offset_hi[ci];
+  src.box = k.box[ci];
+  src.area = k.area[ci];
+  src.extent = k.extent[ci];
+  src.edge_a.assign(k.edge_a.begin() + k.edge_first[ci], k.edge_a.begin() + k.edge_first[ci + 1]);
+  src.edge_b.assign(k.edge_b.begin() + k.edge_first[ci], k.edge_b.begin() + k.edge_first[ci + 1]);
+
+  const int m = sample_grid_for(s, src.extent);
+  const uint32_t n = uint32_t(m * m);
+  // Fine points: each triangle cut into q x q by a regular barycentric grid, q the least that
+  // makes its pieces no bigger than A / (16 n) (a single triangle gets the (4m)^2 grid).
+  std::vector<FinePoint> fine;
+  const int max_q = int(s.barycentric_grids.size()) - 1;
+  for (uint32_t j = k.first[ci]; j < k.first[ci + 1]; ++j) {
+    const uint32_t t = k.polygons[j];
+    const float share = float(kFinePerSample) * float(n) * tris.area[t] / src.area;
+    const int q = std::clamp(int(std::ceil(std::sqrt(share) - 1e-4f)), 1, max_q);
+    const float piece = tris.area[t] / float(q * q);
+    const auto& c3 = tris.corners[t];
+    for (const Vec3& w : s.barycentric_grids[size_t(q)]) {
+      fine.push_back({c3[0] * w.x + c3[1] * w.y + c3[2] * w.z, tris.normal[t],
+                      interpolate_at(s.mesh.polygons[t], &MeshVertex::unshot, w), piece});
+    }
   }
-  src.longest_edge = longest;
-  const SampleGrid& grid = sample_grid_for(s, longest);
-  const std::vector<Vec3>& bary = grid.coarse;
-  src.area_per_sample = src.area / float(bary.size());
-  for (const Vec3& w : bary) {
-    const Vec3 u = interpolate_at(mesh, &MeshVertex::unshot, w);
-    const Vec3 q = src.corner[0] * w.x + src.corner[1] * w.y + src.corner[2] * w.z;
-    src.sample.push_back(q, u);
-    src.mean_unshot += u;
-    const Vec3 end = off_surface(q, src.normal, s.shadow_offset);
+  const uint32_t strata = std::min<uint32_t>(n, uint32_t(fine.size()));
+  std::vector<uint32_t> order(fine.size()), stratum_of(fine.size());
+  std::iota(order.begin(), order.end(), 0u);
+  stratify(fine, 0, fine.size(), strata, 0, order, stratum_of);
+
+  // Per stratum: area, area centroid, mean unshot radiosity; then its point nearest the centroid.
+  std::vector<double> area(strata, 0.0);
+  std::vector<DVec3> centre(strata, DVec3(0.0)), unshot(strata, DVec3(0.0));
+  std::vector<DVec3> normal(strata, DVec3(0.0));
+  for (size_t i = 0; i < fine.size(); ++i) {
+    const uint32_t g = stratum_of[i];
+    area[g] += fine[i].area;
+    centre[g] += DVec3(fine[i].position) * double(fine[i].area);
+    normal[g] += DVec3(fine[i].normal) * double(fine[i].area);
+    unshot[g] += DVec3(fine[i].unshot) * double(fine[i].area);
+  }
+  std::vector<uint32_t> nearest(strata, 0);
+  std::vector<float> best(strata, std::numeric_limits<float>::infinity());
+  for (size_t i = 0; i < fine.size(); ++i) {
+    const uint32_t g = stratum_of[i];
+    const Vec3 d = fine[i].position - Vec3(centre[g] / area[g]);
+    if (glm::dot(d, d) < best[g]) best[g] = glm::dot(d, d), nearest[g] = uint32_t(i);
+  }
+  DVec3 mean(0.0);
+  for (uint32_t g = 0; g < strata; ++g) {
+    // The kernel is evaluated at the stratum's centroid with its mean normal (the midpoint rule,
+    // second order in the spacing); the shadow ray ends at its point nearest there, which lies on
+    // the surface.
+    const FinePoint& p = fine[nearest[g]];
+    const Vec3 u(unshot[g] / area[g]);
+    const DVec3 nm = normal[g] / std::max(glm::length(normal[g]), 1e-30);
+    src.sample.push_back(Vec3(centre[g] / area[g]), Vec3(nm), float(area[g]), u);
+    mean += unshot[g];
+    const Vec3 end = off_surface(p.position, p.normal, s.shadow_offset);
     src.end_x.push_back(end.x), src.end_y.push_back(end.y), src.end_z.push_back(end.z);
   }
-  src.sample_count = bary.size();
+  src.sample_count = strata;
   src.sample.pad();
-  src.centroid = (src.corner[0] + src.corner[1] + src.corner[2]) * (1.0f / 3.0f);
-  src.mean_unshot /= float(bary.size());
-  // Near field: closer than two coarse sample spacings (longest edge / m).
-  const int m = grid.m, k = m / 2;
-  src.near_distance = 2.0f * longest / float(m);
-  src.single_distance = kSingleEdges * longest;
-  src.far_distance = kFarFieldEdges * longest;
-  if (k >= 1) {
-    for (const Vec3& w : grid.half) {
-      src.coarse_sample.push_back(src.corner[0] * w.x + src.corner[1] * w.y + src.corner[2] * w.z,
-                                  Vec3(0.0f));
-    }
-    src.coarse_count = size_t(k) * size_t(k);
-    src.coarse_sample.pad();
-    const float m2 = float(m * m), k2 = float(k * k);
-    src.richardson_fine = m2 / (m2 - k2) * src.area_per_sample;
-    src.richardson_coarse = k2 / (m2 - k2) * (src.area / k2);
-  } else {
-    src.far_distance = std::numeric_limits<float>::infinity();  // one sample: no extrapolation
-  }
-  src.fine_area_per_sample = src.area / float(grid.fine.size());
-  for (size_t c = 0; c < bary.size(); ++c) {
-    for (size_t i = grid.fine_begin[c]; i < grid.fine_begin[c + 1]; ++i) {
-      const Vec3& w = grid.fine[i];
-      src.fine_sample.push_back(src.corner[0] * w.x + src.corner[1] * w.y + src.corner[2] * w.z,
-                                interpolate_at(mesh, &MeshVertex::unshot, w));
+  src.mean_unshot = Vec3(mean / double(src.area));
+
+  // Fine points grouped by stratum (the order above sorted them within each stratum's range).
+  std::vector<uint32_t> by_stratum(fine.size());
+  std::iota(by_stratum.begin(), by_stratum.end(), 0u);
+  std::stable_sort(by_stratum.begin(), by_stratum.end(),
+                   [&](uint32_t a, uint32_t b) { return stratum_of[a] < stratum_of[b]; });
+  for (size_t i = 0; i < by_stratum.size();) {
+    const uint32_t g = stratum_of[by_stratum[i]];
+    for (; i < by_stratum.size() && stratum_of[by_stratum[i]] == g; ++i) {
+      const FinePoint& p = fine[by_stratum[i]];
+      src.fine_sample.push_back(p.position, p.normal, p.area, p.unshot);
     }
     src.fine_sample.pad();
-    src.fine_group_parent.resize(src.fine_sample.size() / SampleLanes::kLanes, uint32_t(c));
+    src.fine_group_parent.resize(src.fine_sample.size() / SampleLanes::kLanes, g);
   }
+  // Near field: closer than two sample spacings (extent / m).
+  src.near_distance = 2.0f * src.extent / float(m);
+  src.single_distance = kSingleExtents * src.extent;
+  src.far_distance = kFarFieldExtents * src.extent;
   return src;
 }
 

@@ -1,78 +1,81 @@
-// A shooting polygon frozen for one shot: its geometry and its samples' unshot radiosity.
+// A shooting cluster frozen for one shot: its geometry and its samples' unshot radiosity.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
+#include "core/aabb.h"
 #include "core/math.h"
 
 namespace rad {
 
 struct SolverState;
-struct SampleGrid;
 
-/// Points on a source and the unshot radiosity there, as a structure of arrays padded to whole
-/// groups of kLanes so the kernel loops over them run as fixed-width vector code.
+/// Points on a source, each with the normal and the area it stands for, and the unshot
+/// radiosity there, as a structure of arrays padded to whole groups of kLanes so the kernel loops
+/// over them run as fixed-width vector code.
 struct SampleLanes {
   static constexpr size_t kLanes = 8;
-  std::vector<float> x, y, z;               // position
-  std::vector<float> r, g, b;               // unshot radiosity
-  std::vector<float> live;                  // 1 for a sample, 0 for padding
+  std::vector<float> x, y, z;     // position
+  std::vector<float> nx, ny, nz;  // unit normal of the surface there
+  std::vector<float> area;        // area the sample stands for; 0 for padding
+  std::vector<float> r, g, b;     // unshot radiosity
   size_t size() const { return x.size(); }  // including padding
   bool empty() const { return x.empty(); }
-  void push_back(const Vec3& p, const Vec3& u);
-  /// Appends dead lanes up to the next multiple of kLanes.
+  void push_back(const Vec3& p, const Vec3& n, float a, const Vec3& u);
+  /// Appends dead lanes (area 0) up to the next multiple of kLanes.
   void pad();
   Vec3 point(size_t i) const { return {x[i], y[i], z[i]}; }
+  Vec3 normal(size_t i) const { return {nx[i], ny[i], nz[i]}; }
   Vec3 value(size_t i) const { return {r[i], g[i], b[i]}; }
 };
 
+/// A cluster (solver/clusters.h) frozen as the source of one shot: its outline, its samples and
+/// their unshot radiosity.
 struct ShotSource {
-  int32_t polygon = -1;
-  Vec3 corner[3];
-  Vec3 normal;
+  int32_t cluster = -1;
+  bool planar = true;  // a planar cluster: its own polygons cannot receive from it
+  // Where receivers stand against the source's triangles (see receiver_side in gather.h).
+  Vec3 centroid{0.0f}, axis{0.0f};
+  float cone_cos = 1.0f, cone_sin = 0.0f, offset_lo = 0.0f, offset_hi = 0.0f;
+  Aabb box;
   float area = 0.0f;
-  float area_per_sample = 0.0f;  // A / n
-  SampleLanes sample;            // sample points on the source and their unshot radiosity
-  size_t sample_count = 0;       // samples in `sample` (its lanes less the padding)
-  // Where the shadow rays to the samples end: each sample moved off the source (off_surface
+  float extent = 0.0f;                // box diagonal
+  std::vector<Vec3> edge_a, edge_b;   // outline, for the exact contour form factor
+  SampleLanes sample;                 // n samples spread by area, one per stratum
+  size_t sample_count = 0;            // samples in `sample` (its lanes less the padding)
+  // Where the shadow rays to the samples end: each stratum's point nearest its centroid moved
+  // off the surface (off_surface
   // with the state's shadow offset), once per shot rather than once per receiving vertex.
   std::vector<float> end_x, end_y, end_z;
-  Vec3 mean_unshot{0.0f};        // area-weighted mean unshot radiosity over the samples
-  bool major = false;            // carried >= major_shot_fraction of the emitted energy
-  // Near field: receivers closer to the source's plane than `near_distance` weight its unshot
-  // radiosity over 16x more samples (no more rays: each fine sample takes the visibility of
-  // the coarse sample whose cell holds it), so a big source's variation is not read off the one
-  // or two coarse samples that dominate the kernel up close.
+  Vec3 mean_unshot{0.0f};  // area-weighted mean unshot radiosity over the samples
+  bool major = false;      // carried >= major_shot_fraction of the emitted energy
+  // Near field: receivers closer to the source than `near_distance` weight its unshot radiosity
+  // over the (about 16x more) fine samples, the points each stratum was made of (no more rays:
+  // each takes the visibility of its stratum's sample), so a big source's variation is not read
+  // off the one or two coarse samples that dominate the kernel up close.
   float near_distance = 0.0f;
   // How a receiver gets its form factor, by its distance from the centroid: within
-  // single_distance the contour integral in single precision, then in double (see
-  // form_factor.h); beyond far_distance, when every sample is in front of it, the exact
-  // integrand's midpoint rule over the n samples, Richardson-extrapolated with the same rule
-  // over the k*k samples of a coarser regular split (k = m/2):
-  //   F = (m^2 S_m - k^2 S_k) / (m^2 - k^2),
-  // which cancels the rule's (edge / distance)^2 error term.
-  Vec3 centroid{0.0f};
-  float longest_edge = 0.0f;
+  // single_distance the outline's contour integral in single precision, then in double (see
+  // form_factor.h); beyond far_distance the midpoint rule over the samples, whose error falls
+  // as (sample spacing / distance)^2.
   float single_distance = 0.0f, far_distance = 0.0f;
-  SampleLanes coarse_sample;  // the k*k points (positions only)
-  size_t coarse_count = 0;
-  float richardson_fine = 0.0f, richardson_coarse = 0.0f;  // m^2/(m^2-k^2) A/n, k^2/(..) A/k^2
-  float fine_area_per_sample = 0.0f;
-  // Fine samples grouped by the coarse sample whose cell holds them, each group padded to whole
-  // lanes: lanes [kLanes g, kLanes (g + 1)) all lie in coarse sample fine_group_parent[g]'s cell,
-  // so a group takes that sample's visibility whole.
+  // Fine samples grouped by stratum, each group padded to whole lanes: lanes [kLanes g,
+  // kLanes (g + 1)) all belong to sample fine_group_parent[g], whose visibility they take.
   SampleLanes fine_sample;
   std::vector<uint32_t> fine_group_parent;
 };
 
-/// The sample grid a source whose longest edge is `longest_edge` gets: the least m in the
-/// state's range whose spacing is within the initial mesh's element size.
-const SampleGrid& sample_grid_for(const SolverState& s, float longest_edge);
+/// The number of samples per side m (n = m * m) a source of box diagonal `extent` gets: the
+/// least m in the options' range whose spacing (extent / m) is within the initial mesh's size.
+int sample_grid_for(const SolverState& s, float extent);
 
-/// Freezes polygon p as the source of the next shot: n = m*m regular samples (SPEC §4, m from
-/// sample_grid_for) and the 16x finer near-field ones, each with the unshot radiosity
-/// interpolated from the vertices of the leaf element it lies in.
-ShotSource make_shot_source(const SolverState& s, int32_t p);
+/// Freezes cluster c as the source of the next shot. Its triangles are cut into fine points of
+/// about equal area (regular barycentric grids, about 16 n in all), each with the unshot
+/// radiosity interpolated on its own triangle's subdivision (SPEC §5); the points are grouped
+/// into n compact strata of equal area by median splits, and each stratum's sample sits at its
+/// centroid with its area, mean normal and mean unshot radiosity (the shadow ray ends at the
+/// stratum's point nearest the centroid, which lies on the surface).
+ShotSource make_shot_source(const SolverState& s, int32_t c);
 
 }  // namespace rad

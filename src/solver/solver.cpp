@@ -10,14 +10,23 @@
 
 namespace rad {
 
+double cluster_unshot_energy(const SolverState& s, size_t c) {
+  double e = 0.0;
+  for (uint32_t j = s.clusters.first[c]; j < s.clusters.first[c + 1]; ++j)
+    e += std::abs(s.unshot_energy[s.clusters.polygons[j]]);
+  return e;
+}
+
 std::optional<int32_t> choose_shooter(const SolverState& s) {
+  // Every shot changes the energy of nearly every cluster, so a heap would be rebuilt each time:
+  // one parallel pass over the clusters' sums instead, then the largest (ties: lowest index).
+  const size_t nc = s.clusters.size();
+  std::vector<double> energy(nc);
+  tbb::parallel_for(size_t(0), nc, [&](size_t c) { energy[c] = cluster_unshot_energy(s, c); });
   int32_t best = -1;
   double best_energy = 0.0;
-  for (size_t p = 0; p < s.unshot_energy.size(); ++p) {
-    if (std::abs(s.unshot_energy[p]) > best_energy) {  // strict: ties keep the lowest index
-      best_energy = std::abs(s.unshot_energy[p]);
-      best = int32_t(p);
-    }
+  for (size_t c = 0; c < nc; ++c) {
+    if (energy[c] > best_energy) best_energy = energy[c], best = int32_t(c);
   }
   if (best < 0) return std::nullopt;
   return best;
@@ -27,23 +36,33 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::optional<int32_t> shooter = choose_shooter(s);
   if (!shooter) return std::nullopt;
-  const size_t src_id = size_t(*shooter);
+  const size_t c = size_t(*shooter);
+  const Clusters& k = s.clusters;
+  const double energy = cluster_unshot_energy(s, c);
 
-  PolygonMesh& source_mesh = s.mesh.polygons[src_id];
   // Overshooting (Feda, Purgathofer 1992): also shoot what the source will get back from the
   // ambient; its unshot radiosity becomes that much negative, shot later if still significant.
+  // A cluster lies in one Pure: one reflectance.
   Vec3 over(0.0f);
-  if (s.options.overshoot) {
-    over = s.material_of(src_id).reflectance * ambient_estimate(s);
-    for (MeshVertex& v : source_mesh.vertices) v.unshot += over;
-  }
+  if (s.options.overshoot) over = s.material_of(k.polygons[k.first[c]]).reflectance * ambient_estimate(s);
+  auto set_unshot = [&](const Vec3& add, bool assign) {
+    for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) {
+      for (MeshVertex& v : s.mesh.polygons[k.polygons[j]].vertices) {
+        v.unshot = assign ? add : v.unshot + add;
+      }
+    }
+  };
+  if (s.options.overshoot) set_unshot(over, false);
   ShotSource src = make_shot_source(s, *shooter);
-  for (MeshVertex& v : source_mesh.vertices) v.unshot = -over;
+  set_unshot(-over, true);
+  for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) {
+    const uint32_t p = k.polygons[j];
+    s.unshot_energy[p] = s.options.overshoot ? polygon_unshot_energy(s.mesh.polygons[p]) : 0.0;
+  }
 
   src.major = s.options.major_shot_fraction > 0.0 &&
-              std::abs(s.unshot_energy[src_id]) >= s.options.major_shot_fraction * s.emitted_energy;
+              energy >= s.options.major_shot_fraction * s.emitted_energy;
   const bool major = src.major;
-  s.unshot_energy[src_id] = s.options.overshoot ? polygon_unshot_energy(source_mesh) : 0.0;
   std::vector<uint8_t> received;
   shoot_to_receivers(s, src, vis, major, received);
   const auto t1 = std::chrono::steady_clock::now();

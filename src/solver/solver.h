@@ -11,7 +11,10 @@
 
 namespace rad {
 
-/// The polygon with the most unshot energy; ties go to the lowest index. None when nothing is
+/// Unshot energy of cluster c: the sum of its polygons' absolute unshot energies.
+double cluster_unshot_energy(const SolverState& s, size_t c);
+
+/// The cluster with the most unshot energy; ties go to the lowest index. None when nothing is
 /// left to shoot.
 std::optional<int32_t> choose_shooter(const SolverState& s);
 

@@ -81,22 +81,10 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   if (!(s.radiosity_scale > 0.0f)) s.radiosity_scale = 1.0f;
   s.shadow_offset = shadow_offset(h.bounds);
   assert(options.sample_grid >= 1 && options.max_sample_grid <= 64);
-  for (int m = options.sample_grid; m <= std::max(options.sample_grid, options.max_sample_grid);
-       ++m) {
-    SampleGrid& g = s.sample_grids.emplace_back();
-    g.m = m;
-    g.coarse = regular_sample_barycentrics(m);
-    const std::vector<Vec3> fine = regular_sample_barycentrics(4 * m);
-    const std::vector<uint32_t> parent = nearest_samples(fine, g.coarse);
-    g.fine_begin.push_back(0);
-    for (uint32_t c = 0; c < g.coarse.size(); ++c) {
-      for (size_t i = 0; i < fine.size(); ++i) {
-        if (parent[i] == c) g.fine.push_back(fine[i]);
-      }
-      g.fine_begin.push_back(uint32_t(g.fine.size()));
-    }
-    if (m / 2 >= 1) g.half = regular_sample_barycentrics(m / 2);
-  }
+  const int max_m = std::max(options.sample_grid, options.max_sample_grid);
+  s.clusters = make_clusters(h, float(max_m) * s.max_size);
+  s.barycentric_grids.resize(size_t(4 * max_m) + 1);
+  for (int q = 1; q <= 4 * max_m; ++q) s.barycentric_grids[size_t(q)] = regular_sample_barycentrics(q);
   return s;
 }
 

@@ -7,6 +7,7 @@
 
 #include "hierarchy/hierarchy.h"
 #include "mesh/patch_mesh.h"
+#include "solver/clusters.h"
 #include "solver/options.h"
 #include "solver/shot_source.h"
 #include "visibility/backend.h"
@@ -30,20 +31,9 @@ struct SolverStats {
 /// One line of the convergence history.
 struct ShotRecord {
   int64_t shot;            // 1-based
-  int32_t source;          // polygon that shot
+  int32_t source;          // cluster that shot
   double seconds;          // since the solve began
   double unshot_fraction;  // unshot / emitted energy after the shot
-};
-
-/// A source's sample points for an m x m grid, in its own barycentrics.
-struct SampleGrid {
-  int m = 0;
-  std::vector<Vec3> coarse;             // the m*m samples
-  /// The near-field samples (4x finer grid) grouped by the coarse sample whose cell holds
-  /// them: those of coarse sample c are fine[fine_begin[c] .. fine_begin[c + 1]).
-  std::vector<Vec3> fine;
-  std::vector<uint32_t> fine_begin;
-  std::vector<Vec3> half;               // the (m/2)^2 samples of the far field's coarser split
 };
 
 struct SolverState {
@@ -52,6 +42,8 @@ struct SolverState {
   Mesh mesh;
   /// Materials per hierarchy object (copied so they can be edited between shots).
   std::vector<Material> materials;
+  /// The shooting patches (SPEC §10), no wider than max_sample_grid x max_size.
+  Clusters clusters;
   /// Per polygon: unshot energy (area-integrated mean-channel unshot radiosity), kept current.
   /// Negative after an edit lowers an emission or a reflectance (Chen 1990): shooter choice and
   /// convergence use its absolute value.
@@ -63,8 +55,9 @@ struct SolverState {
   float min_size = 0.0f;  // smallest element edge
   float max_size = 0.0f;  // largest element edge of the initial mesh
   float shadow_offset = 0.0f;
-  /// Where a source is sampled, for each grid size m from options.sample_grid up.
-  std::vector<SampleGrid> sample_grids;
+  /// regular_sample_barycentrics(q) for q = 1 .. 4 x max_sample_grid (index q; 0 is empty):
+  /// where a source's triangles are cut into fine points.
+  std::vector<std::vector<Vec3>> barycentric_grids;
   /// Every shot so far, in order. New vertices made by refinement gather the major ones again;
   /// vertices made by a forced subdivision gather them all, so their radiosity is exact.
   std::vector<ShotSource> shot_log;

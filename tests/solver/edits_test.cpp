@@ -144,7 +144,7 @@ TEST(Edits, ForcedSubdivisionGivesNewVerticesTheirExactRadiosity) {
   const Vec3 centroid =
       (m.vertices[0].position + m.vertices[1].position + m.vertices[2].position) / 3.0f;
   for (const ShotSource& src : s.shot_log) {
-    if (src.polygon == floor_polygon) continue;
+    if (!may_receive(s, size_t(floor_polygon), src)) continue;
     expected += gather_from_source(mid, h.triangles.normal[size_t(floor_polygon)], centroid, src,
                                    *vis, gather_settings(s), sc);
   }

@@ -345,6 +345,26 @@ SceneDescription generate_scene(SceneKind kind, uint64_t triangles, uint64_t see
   throw Error("unknown scene kind");
 }
 
+std::vector<std::array<Vec3, 3>> tessellate_triangles(const std::vector<std::array<Vec3, 3>>& in,
+                                                      int k) {
+  std::vector<std::array<Vec3, 3>> out;
+  out.reserve(in.size() * size_t(k) * size_t(k));
+  for (const auto& t : in) {
+    // Grid point (i, j): a + i/k (b - a) + j/k (c - a), i + j <= k.
+    auto at = [&](int i, int j) {
+      const float u = float(i) / float(k), v = float(j) / float(k);
+      return t[0] * (1.0f - u - v) + t[1] * u + t[2] * v;
+    };
+    for (int j = 0; j < k; ++j) {
+      for (int i = 0; i + j < k; ++i) {
+        out.push_back({at(i, j), at(i + 1, j), at(i, j + 1)});
+        if (i + j + 1 < k) out.push_back({at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+      }
+    }
+  }
+  return out;
+}
+
 void write_description(const SceneDescription& scene, std::ostream& out) {
   auto vec = [](const Vec3& v) { return fmt::format("<{:.9g} {:.9g} {:.9g}>", v.x, v.y, v.z); };
   auto write = [&](auto&& self, int32_t id, int depth) -> void {

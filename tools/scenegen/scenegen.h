@@ -49,6 +49,12 @@ SceneDescription make_teapot_in_stadium(int stacks);
 /// 4, furniture_tess 2).
 SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess, uint64_t seed);
 
+/// Every triangle cut into k × k congruent triangles of a barycentric grid, same orientation: the
+/// surface is exactly the same, only its tessellation changes. Grid points shared by neighbouring
+/// triangles are computed by the same expression, so they are equal to the last bit.
+std::vector<std::array<Vec3, 3>> tessellate_triangles(const std::vector<std::array<Vec3, 3>>& in,
+                                                      int k);
+
 /// Writes the scene as a description file (SPEC §2) with every Pure's triangles in a Data block.
 /// Reflectance and emission are written as Reflectivity × Color and Emission × Color.
 void write_description(const SceneDescription& scene, std::ostream& out);
