@@ -14,7 +14,7 @@ namespace rad {
 /// polygons[first[c] .. first[c + 1]) and its outline edges edge_a/b[edge_first[c] ..
 /// edge_first[c + 1]).
 ///
-/// A planar cluster holds edge-connected triangles of one Pure within 1 degree of one plane; a
+/// A planar cluster holds edge-connected triangles of one Pure within 0.1 degree of one plane; a
 /// curved one (a face cluster: Willmott, Heckbert, Garland, EGWR 1999) holds edge-connected
 /// triangles whose normals lie within a bounded cone of its axis. Both are split until their
 /// box diagonal is within the extent asked for.

@@ -109,29 +109,35 @@ ShotSource make_shot_source(const SolverState& s, int32_t c) {
   std::iota(order.begin(), order.end(), 0u);
   stratify(fine, 0, fine.size(), strata, 0, order, stratum_of);
 
-  // Per stratum: area, area centroid, mean unshot radiosity; then its point nearest the centroid.
-  std::vector<double> area(strata, 0.0);
+  // Per stratum: area, area centroid, mean normal, mean unshot radiosity, and the centroid of its
+  // unshot power (weights |area x unshot|), near which its shadow ray ends.
+  std::vector<double> area(strata, 0.0), power(strata, 0.0);
   std::vector<DVec3> centre(strata, DVec3(0.0)), unshot(strata, DVec3(0.0));
-  std::vector<DVec3> normal(strata, DVec3(0.0));
+  std::vector<DVec3> normal(strata, DVec3(0.0)), power_centre(strata, DVec3(0.0));
   for (size_t i = 0; i < fine.size(); ++i) {
     const uint32_t g = stratum_of[i];
-    area[g] += fine[i].area;
-    centre[g] += DVec3(fine[i].position) * double(fine[i].area);
-    normal[g] += DVec3(fine[i].normal) * double(fine[i].area);
-    unshot[g] += DVec3(fine[i].unshot) * double(fine[i].area);
+    const double a = fine[i].area, w = a * std::abs(double(mean_component(fine[i].unshot)));
+    area[g] += a;
+    power[g] += w;
+    centre[g] += DVec3(fine[i].position) * a;
+    power_centre[g] += DVec3(fine[i].position) * w;
+    normal[g] += DVec3(fine[i].normal) * a;
+    unshot[g] += DVec3(fine[i].unshot) * a;
   }
   std::vector<uint32_t> nearest(strata, 0);
   std::vector<float> best(strata, std::numeric_limits<float>::infinity());
   for (size_t i = 0; i < fine.size(); ++i) {
     const uint32_t g = stratum_of[i];
-    const Vec3 d = fine[i].position - Vec3(centre[g] / area[g]);
+    const DVec3 target = power[g] > 0.0 ? power_centre[g] / power[g] : centre[g] / area[g];
+    const Vec3 d = fine[i].position - Vec3(target);
     if (glm::dot(d, d) < best[g]) best[g] = glm::dot(d, d), nearest[g] = uint32_t(i);
   }
   DVec3 mean(0.0);
   for (uint32_t g = 0; g < strata; ++g) {
     // The kernel is evaluated at the stratum's centroid with its mean normal (the midpoint rule,
-    // second order in the spacing); the shadow ray ends at its point nearest there, which lies on
-    // the surface.
+    // second order in the spacing). The shadow ray ends on the surface where the stratum's power
+    // is: at its area centroid, a stratum half under a block standing on it would have its lit
+    // half's power blocked (measured: 7% of a floor cluster's shot lost in the closed Cornell box).
     const FinePoint& p = fine[nearest[g]];
     const Vec3 u(unshot[g] / area[g]);
     const DVec3 nm = normal[g] / std::max(glm::length(normal[g]), 1e-30);

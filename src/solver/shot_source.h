@@ -44,8 +44,8 @@ struct ShotSource {
   std::vector<Vec3> edge_a, edge_b;   // outline, for the exact contour form factor
   SampleLanes sample;                 // n samples spread by area, one per stratum
   size_t sample_count = 0;            // samples in `sample` (its lanes less the padding)
-  // Where the shadow rays to the samples end: each stratum's point nearest its centroid moved
-  // off the surface (off_surface
+  // Where the shadow rays to the samples end: each stratum's point nearest the centroid of its
+  // unshot power moved off the surface (off_surface
   // with the state's shadow offset), once per shot rather than once per receiving vertex.
   std::vector<float> end_x, end_y, end_z;
   Vec3 mean_unshot{0.0f};  // area-weighted mean unshot radiosity over the samples
@@ -75,7 +75,7 @@ int sample_grid_for(const SolverState& s, float extent);
 /// radiosity interpolated on its own triangle's subdivision (SPEC §5); the points are grouped
 /// into n compact strata of equal area by median splits, and each stratum's sample sits at its
 /// centroid with its area, mean normal and mean unshot radiosity (the shadow ray ends at the
-/// stratum's point nearest the centroid, which lies on the surface).
+/// stratum's point nearest the centroid of its unshot power, which lies on the surface).
 ShotSource make_shot_source(const SolverState& s, int32_t c);
 
 }  // namespace rad

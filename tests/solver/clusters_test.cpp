@@ -166,3 +166,4 @@ TEST(Clusters, EveryShotConservesEnergyInAClosedScene) {
 
 }  // namespace
 }  // namespace rad
+

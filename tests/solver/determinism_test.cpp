@@ -36,12 +36,16 @@ TEST(Determinism, GridAndEmbreeAgreeToOnePartInAHundredThousand) {
   const auto embree = solve_cornell(BackendKind::Embree, 2);
   const auto grid = solve_cornell(BackendKind::Grid, 2);
   ASSERT_EQ(embree.size(), grid.size()) << "different subdivision";
-  float worst = 0;
+  // Agreement as the trust issue defines it: every vertex within 1e-5 of the largest radiosity.
+  // (A ray that passes within a micrometre of a block's edge may go either way in float; it
+  // moves its vertex by a fraction of one sample's share.)
+  float largest = 0, worst = 0;
+  for (const Vec3& b : embree) largest = std::max(largest, max_component(b));
   for (size_t i = 0; i < embree.size(); ++i) {
-    const float scale = std::max(max_component(embree[i]), 1e-6f);
-    worst = std::max(worst, max_component(glm::abs(embree[i] - grid[i])) / scale);
+    worst = std::max(worst, max_component(glm::abs(embree[i] - grid[i])) / largest);
   }
-  std::printf("grid vs embree: %zu vertices, worst relative difference %.3g\n", embree.size(), worst);
+  std::printf("grid vs embree: %zu vertices, worst difference %.3g of the largest radiosity\n",
+              embree.size(), worst);
   EXPECT_LE(worst, 1e-5f);
 }
 
