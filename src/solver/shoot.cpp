@@ -38,19 +38,26 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
                         bool major, std::vector<uint8_t>& received) {
   const Triangles& tris = s.hierarchy->triangles;
   const GatherSettings settings = gather_settings(s);
+  const SharedVertices& shared = s.shared;
   received.assign(tris.size(), 0);
+  tbb::parallel_for(size_t(0), tris.size(), [&](size_t p) { received[p] = may_receive(s, p, src); });
+  // A shared vertex is skipped when the one that gathers for it is in a received polygon.
+  auto copied = [&](size_t p, size_t v) {
+    return shared.copies_gain(uint32_t(p), uint32_t(v)) &&
+           received[shared.polygon[shared.canonical[shared.first[p] + v]]];
+  };
   tbb::enumerable_thread_specific<GatherScratch> scratch;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, tris.size(), 8), [&](const auto& range) {
     const ScopedFlushDenormals ftz;  // once per range, not per ray batch (see denormals.h)
     for (size_t p = range.begin(); p != range.end(); ++p) {
-      if (!may_receive(s, p, src)) continue;
-      received[p] = 1;
+      if (!received[p]) continue;
       PolygonMesh& mesh = s.mesh.polygons[p];
       const Vec3 n = tris.normal[p], centroid = polygon_centroid(tris, p);
       const Vec3 rho = s.material_of(p).reflectance;
       auto body = [&](size_t v0, size_t v1) {
         GatherScratch& sc = scratch.local();
         for (size_t v = v0; v < v1; ++v) {
+          if (copied(p, v)) continue;
           MeshVertex& x = mesh.vertices[v];
           const Vec3 dh = gather_from_source(x.position, n, centroid, src, vis, settings, sc);
           x.irradiance += dh;
@@ -69,6 +76,18 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
         });
       }
     }
+  });
+  // The shared vertices take the gain of the one that gathered for them (same Pure: same rho).
+  tbb::parallel_for(size_t(0), shared.copies.size(), [&](size_t i) {
+    const uint32_t g = shared.copies[i], c = shared.canonical[g];
+    const uint32_t p = shared.polygon[g], q = shared.polygon[c];
+    if (!received[p] || !received[q]) return;
+    const Vec3 dh = s.mesh.polygons[q].vertices[c - shared.first[q]].shot;
+    MeshVertex& x = s.mesh.polygons[p].vertices[g - shared.first[p]];
+    x.irradiance += dh;
+    x.unshot += s.material_of(p).reflectance * dh;
+    x.shot = dh;
+    if (major) x.major += dh;
   });
   for (const GatherScratch& sc : scratch) s.stats += sc.stats;
 }

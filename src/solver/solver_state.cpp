@@ -3,7 +3,10 @@
 #include <tbb/parallel_for.h>
 
 #include <cassert>
+#include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <tuple>
 
 #include "mesh/sample_points.h"
 #include "mesh/subdivide.h"
@@ -39,6 +42,44 @@ double SolverState::unshot_total() const {
   double t = 0.0;
   for (double e : unshot_energy) t += std::abs(e);
   return t;
+}
+
+SharedVertices find_shared_vertices(const Mesh& mesh, const Clusters& clusters) {
+  SharedVertices sh;
+  const size_t np = mesh.polygons.size();
+  sh.first.resize(np + 1, 0);
+  for (size_t p = 0; p < np; ++p)
+    sh.first[p + 1] = sh.first[p] + uint32_t(mesh.polygons[p].vertex_count());
+  const uint32_t n = sh.first[np];
+  sh.canonical.resize(n);
+  sh.polygon.resize(n);
+  struct Key {
+    uint32_t cluster, x, y, z, index;
+  };
+  std::vector<Key> keys;
+  for (size_t p = 0; p < np; ++p) {
+    const uint32_t c = clusters.cluster_of[p];
+    for (uint32_t v = 0; v < mesh.polygons[p].vertex_count(); ++v) {
+      const uint32_t g = sh.first[p] + v;
+      sh.canonical[g] = g;
+      sh.polygon[g] = uint32_t(p);
+      if (!clusters.planar[c] || clusters.polygon_count(c) < 2) continue;
+      const Vec3 q = mesh.polygons[p].vertices[v].position + Vec3(0.0f);  // -0 as +0
+      Key k{c, 0, 0, 0, g};
+      std::memcpy(&k.x, &q.x, 4), std::memcpy(&k.y, &q.y, 4), std::memcpy(&k.z, &q.z, 4);
+      keys.push_back(k);
+    }
+  }
+  auto tie = [](const Key& k) { return std::make_tuple(k.cluster, k.x, k.y, k.z, k.index); };
+  std::sort(keys.begin(), keys.end(), [&](const Key& a, const Key& b) { return tie(a) < tie(b); });
+  for (size_t i = 1; i < keys.size(); ++i) {
+    const Key &a = keys[i - 1], &b = keys[i];
+    if (a.cluster == b.cluster && a.x == b.x && a.y == b.y && a.z == b.z)
+      sh.canonical[b.index] = sh.canonical[a.index];
+  }
+  for (uint32_t g = 0; g < n; ++g)
+    if (sh.canonical[g] != g) sh.copies.push_back(g);
+  return sh;
 }
 
 SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) {
@@ -83,6 +124,7 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   assert(options.sample_grid >= 1 && options.max_sample_grid <= 64);
   const int max_m = std::max(options.sample_grid, options.max_sample_grid);
   s.clusters = make_clusters(h, float(max_m) * s.max_size);
+  s.shared = find_shared_vertices(s.mesh, s.clusters);
   s.barycentric_grids.resize(size_t(4 * max_m) + 1);
   for (int q = 1; q <= 4 * max_m; ++q) s.barycentric_grids[size_t(q)] = regular_sample_barycentrics(q);
   return s;

@@ -36,6 +36,20 @@ struct ShotRecord {
   double unshot_fraction;  // unshot / emitted energy after the shot
 };
 
+/// Vertices of the initial mesh that polygons of one planar cluster share (the same position): a
+/// tessellated wall stores each grid point once per triangle around it (six times), but only the
+/// lowest (polygon, vertex) gathers; the others copy its gain after the shot. Indices are global
+/// over the initial vertices: polygon p's vertex v (v < first[p + 1] - first[p]) is first[p] + v.
+struct SharedVertices {
+  std::vector<uint32_t> first;      // per polygon, and one past the end
+  std::vector<uint32_t> canonical;  // per initial vertex: the one that gathers for it (or itself)
+  std::vector<uint32_t> polygon;    // per initial vertex: its polygon
+  std::vector<uint32_t> copies;     // the initial vertices whose canonical is another, in order
+  bool copies_gain(uint32_t p, uint32_t v) const {
+    return v < first[p + 1] - first[p] && canonical[first[p] + v] != first[p] + v;
+  }
+};
+
 struct SolverState {
   const Hierarchy* hierarchy = nullptr;
   SolverOptions options;
@@ -44,6 +58,7 @@ struct SolverState {
   std::vector<Material> materials;
   /// The shooting patches (SPEC §10), no wider than max_sample_grid x max_size.
   Clusters clusters;
+  SharedVertices shared;
   /// Per polygon: unshot energy (area-integrated mean-channel unshot radiosity), kept current.
   /// Negative after an edit lowers an emission or a reflectance (Chen 1990): shooter choice and
   /// convergence use its absolute value.
@@ -82,6 +97,9 @@ struct SolverState {
 /// The state before the first shot: the unsplit mesh, emitters' unshot radiosity = emission.
 /// Keeps a pointer to `h`, which must outlive the state.
 SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options);
+
+/// The initial mesh's vertices shared within planar clusters.
+SharedVertices find_shared_vertices(const Mesh& mesh, const Clusters& clusters);
 
 /// Unshot energy of polygon p integrated over its leaf elements (mean over channels).
 double polygon_unshot_energy(const PolygonMesh& p);
