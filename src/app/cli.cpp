@@ -63,7 +63,7 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
                    "rad serve: mesh written when the server stops (.ply, .off, .obj, .gltf, .glb)");
   } else {
     app.add_option("scene", c.scene, "Scene description file")->required();
-    app.add_option("output", c.output, "Output mesh (.ply, .off, .obj, .gltf or .glb)");
+    app.add_option("output", c.output, "Output mesh (.ply, .off, .gfo (COFF), .obj, .gltf or .glb)");
   }
   app.add_flag("--check", c.check, "Parse and validate the scene, print a summary, do not solve");
   app.add_option("--backend", backend, "Shadow-ray backend: embree, grid or brute")
@@ -74,10 +74,10 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
   app.add_option("--min-size", c.solver.min_size,
                  "Smallest element edge, scene units (default: scene diagonal / 256)");
   app.add_option("--samples", samples,
-                 "Fewest samples per source polygon (a square: 1, 4, 9, 16, ... up to 256)")
+                 "Fewest samples per shooting cluster (a square: 1, 4, 9, 16, ... up to 256)")
       ->capture_default_str();
   app.add_option("--max-samples", max_samples,
-                 "Most samples per source polygon (a square, up to 256): a big source gets more "
+                 "Most samples per shooting cluster (a square, up to 256): a big source gets more "
                  "than --samples, as many as bring their spacing within the initial mesh's "
                  "element size (scene diagonal / 16) or this many; give both to fix the count")
       ->capture_default_str();
@@ -110,9 +110,14 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
   app.add_option("--exposure", c.exposure, "Stops added to the automatic exposure")
       ->capture_default_str();
   std::string camera, size = "800x800";
+  // One value per --image (repeat the option for more images): a vector option would otherwise
+  // swallow the positionals after it (`--image out.png scene.des out.ply`).
   app.add_option("--image", c.images,
                  "Render the solved scene to this image: .png (tone-mapped sRGB) or linear "
-                 ".hdr, .exr, .pfm (repeatable)");
+                 ".hdr, .exr, .pfm (repeatable)")
+      ->expected(1)
+      ->allow_extra_args(false)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   app.add_option("--camera", camera,
                  "Image camera eye_x,eye_y,eye_z,target_x,target_y,target_z[,fov_deg], up +y "
                  "(default: frames the scene from its open side; fov 39.3)");

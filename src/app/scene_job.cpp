@@ -40,6 +40,9 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job) {
   };
   RunTimes times;
   if (!job.mesh_output.empty()) check_mesh_extension(job.mesh_output);
+  if (is_original_output_name(job.mesh_output)) {
+    say(job.mesh_output + ": .gfo is the original's output name; writing Geomview COFF there");
+  }
   for (const std::string& image : job.images) check_image_extension(image);
 
   say("Reading description file...");

@@ -22,11 +22,13 @@ std::string extension(const std::string& path) {
 
 void check_mesh_extension(const std::string& path) {
   const std::string e = extension(path);
-  if (e != ".ply" && e != ".off" && e != ".obj" && e != ".gltf" && e != ".glb") {
-    throw Error(SourceLoc{path},
-                "unknown output format '" + e + "' (expected .ply, .off, .obj, .gltf or .glb)");
+  if (e != ".ply" && e != ".off" && e != ".gfo" && e != ".obj" && e != ".gltf" && e != ".glb") {
+    throw Error(SourceLoc{path}, "unknown output format '" + e +
+                                     "' (expected .ply, .off, .gfo, .obj, .gltf or .glb)");
   }
 }
+
+bool is_original_output_name(const std::string& path) { return extension(path) == ".gfo"; }
 
 void write_mesh_file(const std::string& path, const OutputMesh& mesh, const MeshFileOptions& o) {
   check_mesh_extension(path);
@@ -34,7 +36,7 @@ void write_mesh_file(const std::string& path, const OutputMesh& mesh, const Mesh
   AtomicFile f(path);
   if (e == ".ply") {
     write_ply(f.stream(), mesh, o.tone, o.ascii);
-  } else if (e == ".off") {
+  } else if (e == ".off" || e == ".gfo") {
     write_off(f.stream(), mesh, o.tone);
   } else if (e == ".obj") {
     write_obj(f.stream(), mesh, o.tone);

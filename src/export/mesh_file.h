@@ -17,9 +17,13 @@ struct MeshFileOptions {
 /// solving, so a bad name costs nothing).
 void check_mesh_extension(const std::string& path);
 
+/// True for .gfo, the original program's output name (its viewer's format is gone): rad writes
+/// Geomview COFF there, its closest living relative.
+bool is_original_output_name(const std::string& path);
+
 /// Writes the mesh atomically (the file appears complete or not at all) in the format its
-/// extension names: .ply (write_ply), .off (write_off), .obj (write_obj), .gltf or .glb
-/// (write_gltf).
+/// extension names: .ply (write_ply), .off and .gfo (write_off), .obj (write_obj), .gltf or
+/// .glb (write_gltf).
 void write_mesh_file(const std::string& path, const OutputMesh& mesh, const MeshFileOptions& o);
 
 }  // namespace rad

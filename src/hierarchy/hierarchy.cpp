@@ -28,16 +28,29 @@ struct Builder {
     }
     Aabb box;
     if (d.kind == ObjectKind::Pure) {
-      for (const auto& t : d.triangles) {
-        Vec3 n = glm::cross(t[1] - t[0], t[2] - t[0]);
-        float len = glm::length(n);
-        float area = 0.5f * len;
+      for (size_t i = 0; i < d.triangles.size(); ++i) {
+        const auto& t = d.triangles[i];
+        // The solver squares distances in single precision: coordinates must leave room for that.
+        for (const Vec3& p : t) {
+          if (!(max_component(glm::abs(p)) <= kMaxCoordinate)) {
+            throw Error(i < d.triangle_locs.size() ? d.triangle_locs[i] : d.loc,
+                        fmt::format("coordinate {:g} {:g} {:g} of Pure \"{}\" is too large: rad "
+                                    "computes in single precision and takes |x|, |y|, |z| up to "
+                                    "{:g} (scale the scene down)",
+                                    p.x, p.y, p.z, d.name, double(kMaxCoordinate)));
+          }
+        }
+        // In double: the cross product of large edges overflows a float.
+        const DVec3 nd = glm::cross(DVec3(t[1] - t[0]), DVec3(t[2] - t[0]));
+        const double len = glm::length(nd);
+        const float area = float(0.5 * len);
         if (!(area > 0.0f) || !std::isfinite(area)) {
           ++dropped;
           continue;
         }
+        const Vec3 n(nd / len);
         out.triangles.corners.push_back(t);
-        out.triangles.normal.push_back(n / len);
+        out.triangles.normal.push_back(n);
         out.triangles.area.push_back(area);
         out.triangles.object.push_back(id);
         for (const Vec3& p : t) box.extend(p);

@@ -44,6 +44,9 @@ struct Hierarchy {
   uint32_t dropped_degenerate = 0;  // zero-area triangles removed while building
 };
 
+/// Largest coordinate magnitude a scene may use: distances are squared in single precision.
+inline constexpr float kMaxCoordinate = 1e18f;
+
 /// Builds the hierarchy: computes normals, areas and boxes, drops zero-area triangles (one
 /// warning counting them), and orders triangles depth-first. Throws rad::Error if an object
 /// ends up empty.

@@ -1,6 +1,8 @@
 // Recursive-descent parser for the description grammar of SPEC §2, one function per rule.
 #include "scene/parser.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -131,6 +133,15 @@ class Parser {
   int32_t parse_object(bool in_composite, const std::string& expected) {
     Token object = tokens_.next();
     if (!is_word(object, "Object")) fail_expected(object, expected, true);
+    // The parser and every walk of the hierarchy recurse: bound the depth, not the stack.
+    if (depth_ >= kMaxNesting) {
+      throw Error(object.loc, fmt::format("objects nested more than {} deep", kMaxNesting));
+    }
+    struct Depth {
+      int& d;
+      explicit Depth(int& x) : d(++x) {}
+      ~Depth() { --d; }
+    } nested(depth_);
     std::string name = expect_string("the object's name (a quoted string)");
     Token kind = tokens_.next();
     ObjectKind k;
@@ -276,6 +287,8 @@ class Parser {
   }
 
   Tokenizer tokens_;
+  int depth_ = 0;  // objects open around the one being parsed
+  static constexpr int kMaxNesting = 1000;
   SceneDescription scene_;
 };
 

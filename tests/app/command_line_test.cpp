@@ -197,6 +197,56 @@ TEST(CommandLine, RendersAnImageWithoutAMeshOutput) {
   fs::remove(png);
 }
 
+// Each option takes exactly its own values: a repeatable --image before the positionals takes
+// one file name, not the scene and the output too.
+TEST(CommandLine, ImageBeforeThePositionalsTakesOneValue) {
+  const fs::path png = fs::temp_directory_path() / "rad_test_first.png";
+  const fs::path png2 = fs::temp_directory_path() / "rad_test_second.png";
+  const fs::path ply = fs::temp_directory_path() / "rad_test_after_image.ply";
+  const RadRun r = run_rad("-q --size 16x16 --image " + png.string() + " --image " +
+                           png2.string() + " " + (kScenes / "parallel_squares.des").string() +
+                           " " + ply.string());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(read_file(png).rfind("\x89PNG", 0), 0u);
+  EXPECT_EQ(read_file(png2).rfind("\x89PNG", 0), 0u);
+  EXPECT_EQ(read_file(ply).rfind("ply\n", 0), 0u);
+  for (const fs::path& p : {png, png2, ply}) fs::remove(p);
+}
+
+// The original's own command line: .gfo was its output; rad writes Geomview COFF there and says
+// so once.
+TEST(CommandLine, TheOriginalsGfoOutputIsWrittenAsCoff) {
+  const fs::path out = fs::temp_directory_path() / "rad_test_scene5.gfo";
+  const RadRun r = run_rad("-noshadows -minsize 0.1 " +
+                           (kScenes / "parallel_squares.des").string() + " " + out.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(read_file(out).rfind("COFF\n", 0), 0u);
+  const std::string note = "writing Geomview COFF there";
+  const size_t at = r.out.find(note);
+  EXPECT_NE(at, std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find(note, at + 1), std::string::npos) << "said once";
+  fs::remove(out);
+}
+
+// Hostile input ends in one error, never a signal: 20,000 nested Assemblies overflowed the
+// parser's stack (SIGSEGV) before the nesting was bounded.
+TEST(CommandLine, TwentyThousandNestedAssembliesEndInOneError) {
+  const fs::path des = fs::temp_directory_path() / "rad_test_deep.des";
+  {
+    std::ofstream f(des);
+    f << "\"deep\"\n";
+    for (int i = 0; i < 20000; ++i) f << "Object \"a\" Assembly {\n";
+    f << "Object \"p\" Pure { Reflectivity 0.5 Color <1 1 1> Emission 1 Data { <0 0 0> <1 0 0> "
+         "<0 1 0> } }\n";
+    for (int i = 0; i < 20000; ++i) f << "}\n";
+  }
+  const RadRun r = run_rad("--check " + des.string());
+  EXPECT_EQ(r.code, 1) << "an error, not a signal";
+  EXPECT_NE(r.err.find(":1002:1: error: objects nested more than 1000 deep"), std::string::npos)
+      << r.err;
+  fs::remove(des);
+}
+
 TEST(CommandLine, HelpListsTheOptions) {
   const RadRun r = run_rad("--help");
   EXPECT_EQ(r.code, 0);
