@@ -1,7 +1,8 @@
 #include "hierarchy/hierarchy.h"
 
-#include <cmath>
 #include <fmt/format.h>
+
+#include <cmath>
 
 namespace rad {
 

@@ -138,10 +138,10 @@ void split_region(const Triangles& t, std::vector<uint32_t> tris, float max_exte
       if (c > lo && c < hi && std::abs(c - median) < best) best = std::abs(c - median), cut = c;
     }
   }
-  size_t mid = size_t(std::partition_point(tris.begin(), tris.end(), [&](uint32_t i) {
-                        return centroid_of(t, i)[axis] < cut;
-                      }) -
-                      tris.begin());
+  size_t mid =
+      size_t(std::partition_point(tris.begin(), tris.end(),
+                                  [&](uint32_t i) { return centroid_of(t, i)[axis] < cut; }) -
+             tris.begin());
   if (mid == 0 || mid == tris.size()) mid = tris.size() / 2;
   split_region(t, std::vector<uint32_t>(tris.begin(), tris.begin() + long(mid)), max_extent, parts);
   split_region(t, std::vector<uint32_t>(tris.begin() + long(mid), tris.end()), max_extent, parts);

@@ -24,15 +24,15 @@ namespace rad {
 /// integral of a surface's form factor runs over its boundary only (Baum, Rushmeier, Winget,
 /// SIGGRAPH 1989), so an outline costs as much as its corners however finely it is tessellated.
 struct Clusters {
-  std::vector<uint32_t> first;     // size() + 1 entries
-  std::vector<uint32_t> polygons;  // every triangle once, grouped by cluster
+  std::vector<uint32_t> first;       // size() + 1 entries
+  std::vector<uint32_t> polygons;    // every triangle once, grouped by cluster
   std::vector<uint32_t> cluster_of;  // per triangle
   std::vector<uint32_t> edge_first;  // size() + 1 entries
   std::vector<Vec3> edge_a, edge_b;  // outline edges a -> b
   std::vector<Vec3> centroid;        // area centroid
   std::vector<Vec3> axis;            // unit area-weighted mean normal
   std::vector<float> area;
-  std::vector<float> extent;         // box diagonal
+  std::vector<float> extent;  // box diagonal
   std::vector<Aabb> box;
   /// The normal cone: every triangle normal is within angle acos(cone_cos) of the axis.
   std::vector<float> cone_cos, cone_sin;

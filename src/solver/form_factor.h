@@ -24,8 +24,8 @@ float point_to_triangle_form_factor(const Vec3& x, const Vec3& n, const Vec3& a,
 
 /// Unoccluded form factor from a differential area at `x` with unit normal `n` to a surface
 /// bounded by the directed edges a[i] -> b[i] (in any order: contour integrals add up), which x
-/// must see from the front everywhere (receiver_side == +1 in gather.h). The surface is clipped to the
-/// half-space in front of x: each edge is cut where it crosses the tangent plane, and the part
+/// must see from the front everywhere (receiver_side == +1 in gather.h). The surface is clipped to
+/// the half-space in front of x: each edge is cut where it crosses the tangent plane, and the part
 /// of the clipped boundary that runs in the tangent plane, whose contour term is only its
 /// change of polar angle about n, is the sum over crossings of +-(polar angle), entering minus
 /// leaving, so no loops need building. `axis` is the surface's mean normal: the polar angles

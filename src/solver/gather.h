@@ -14,7 +14,7 @@ namespace rad {
 struct GatherScratch {
   std::vector<float> end_x, end_y, end_z;  // far ends of the shadow fan
   std::vector<uint8_t> blocked;
-  std::vector<float> weight;      // coarse samples' kernels
+  std::vector<float> weight;  // coarse samples' kernels
   std::vector<uint32_t> active;
   std::vector<float> coarse_visible;  // near field: 1 or 0 per coarse sample
   SolverStats stats;

@@ -40,7 +40,8 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
   const GatherSettings settings = gather_settings(s);
   const SharedVertices& shared = s.shared;
   received.assign(tris.size(), 0);
-  tbb::parallel_for(size_t(0), tris.size(), [&](size_t p) { received[p] = may_receive(s, p, src); });
+  tbb::parallel_for(size_t(0), tris.size(),
+                    [&](size_t p) { received[p] = may_receive(s, p, src); });
   // A shared vertex is skipped when the one that gathers for it is in a received polygon.
   auto copied = [&](size_t p, size_t v) {
     return shared.copies_gain(uint32_t(p), uint32_t(v)) &&

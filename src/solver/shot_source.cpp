@@ -27,14 +27,16 @@ struct FinePoint {
 // Splits points[lo, hi) into `groups` strata of about equal area by median cuts along the
 // longest axis of their box, writing each point's stratum to stratum_of.
 void stratify(std::vector<FinePoint>& points, size_t lo, size_t hi, uint32_t groups,
-              uint32_t first_group, std::vector<uint32_t>& order, std::vector<uint32_t>& stratum_of) {
+              uint32_t first_group, std::vector<uint32_t>& order,
+              std::vector<uint32_t>& stratum_of) {
   if (groups <= 1) {
     for (size_t i = lo; i < hi; ++i) stratum_of[order[i]] = first_group;
     return;
   }
   Aabb box;
   double total = 0.0;
-  for (size_t i = lo; i < hi; ++i) box.extend(points[order[i]].position), total += points[order[i]].area;
+  for (size_t i = lo; i < hi; ++i)
+    box.extend(points[order[i]].position), total += points[order[i]].area;
   const Vec3 e = box.extent();
   const int axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
   std::sort(order.begin() + long(lo), order.begin() + long(hi), [&](uint32_t a, uint32_t b) {

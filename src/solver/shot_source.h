@@ -16,10 +16,10 @@ struct SolverState;
 /// over them run as fixed-width vector code.
 struct SampleLanes {
   static constexpr size_t kLanes = 8;
-  std::vector<float> x, y, z;     // position
-  std::vector<float> nx, ny, nz;  // unit normal of the surface there
-  std::vector<float> area;        // area the sample stands for; 0 for padding
-  std::vector<float> r, g, b;     // unshot radiosity
+  std::vector<float> x, y, z;               // position
+  std::vector<float> nx, ny, nz;            // unit normal of the surface there
+  std::vector<float> area;                  // area the sample stands for; 0 for padding
+  std::vector<float> r, g, b;               // unshot radiosity
   size_t size() const { return x.size(); }  // including padding
   bool empty() const { return x.empty(); }
   void push_back(const Vec3& p, const Vec3& n, float a, const Vec3& u);
@@ -40,10 +40,10 @@ struct ShotSource {
   float cone_cos = 1.0f, cone_sin = 0.0f, offset_lo = 0.0f, offset_hi = 0.0f;
   Aabb box;
   float area = 0.0f;
-  float extent = 0.0f;                // box diagonal
-  std::vector<Vec3> edge_a, edge_b;   // outline, for the exact contour form factor
-  SampleLanes sample;                 // n samples spread by area, one per stratum
-  size_t sample_count = 0;            // samples in `sample` (its lanes less the padding)
+  float extent = 0.0f;               // box diagonal
+  std::vector<Vec3> edge_a, edge_b;  // outline, for the exact contour form factor
+  SampleLanes sample;                // n samples spread by area, one per stratum
+  size_t sample_count = 0;           // samples in `sample` (its lanes less the padding)
   // Where the shadow rays to the samples end: each stratum's point nearest the centroid of its
   // unshot power moved off the surface (off_surface
   // with the state's shadow offset), once per shot rather than once per receiving vertex.

@@ -44,7 +44,8 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   // ambient; its unshot radiosity becomes that much negative, shot later if still significant.
   // A cluster lies in one Pure: one reflectance.
   Vec3 over(0.0f);
-  if (s.options.overshoot) over = s.material_of(k.polygons[k.first[c]]).reflectance * ambient_estimate(s);
+  if (s.options.overshoot)
+    over = s.material_of(k.polygons[k.first[c]]).reflectance * ambient_estimate(s);
   auto set_unshot = [&](const Vec3& add, bool assign) {
     for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) {
       for (MeshVertex& v : s.mesh.polygons[k.polygons[j]].vertices) {

@@ -2,8 +2,8 @@
 
 #include <tbb/parallel_for.h>
 
-#include <cassert>
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstring>
 #include <tuple>
@@ -126,7 +126,8 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   s.clusters = make_clusters(h, float(max_m) * s.max_size);
   s.shared = find_shared_vertices(s.mesh, s.clusters);
   s.barycentric_grids.resize(size_t(4 * max_m) + 1);
-  for (int q = 1; q <= 4 * max_m; ++q) s.barycentric_grids[size_t(q)] = regular_sample_barycentrics(q);
+  for (int q = 1; q <= 4 * max_m; ++q)
+    s.barycentric_grids[size_t(q)] = regular_sample_barycentrics(q);
   return s;
 }
 

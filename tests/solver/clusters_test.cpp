@@ -36,7 +36,9 @@ TEST(Clusters, AreSplitToTheExtentAskedForWhateverTheTessellation) {
     const Hierarchy h = build_hierarchy(quad_scene(k));
     const Clusters c = make_clusters(h, 0.75f);
     for (size_t i = 0; i < c.size(); ++i) {
-      if (c.polygon_count(i) > 1) EXPECT_LE(c.extent[i], 0.75f + 1e-5f) << k;
+      if (c.polygon_count(i) > 1) {
+        EXPECT_LE(c.extent[i], 0.75f + 1e-5f) << k;
+      }
     }
     // k = 1: the two triangles (each wider than 0.75) stand alone; finer: about four quarters.
     EXPECT_LE(c.size(), 4u) << k;
@@ -144,16 +146,16 @@ void expect_energy_balance(int k, int shots) {
     for (const PolygonMesh& p : s.mesh.polygons) {
       for_each_leaf(p, [&](uint32_t e) {
         const Element& el = p.elements[e];
-        gained += double(el.area) * double(mean_component(p.vertices[el.v[0]].shot +
-                                                          p.vertices[el.v[1]].shot +
-                                                          p.vertices[el.v[2]].shot)) /
+        gained += double(el.area) *
+                  double(mean_component(p.vertices[el.v[0]].shot + p.vertices[el.v[1]].shot +
+                                        p.vertices[el.v[2]].shot)) /
                   3.0;
       });
     }
     const double err = std::abs(gained / shot_power - 1.0);
     worst = std::max(worst, err);
-    EXPECT_LE(err, 5e-3) << "k = " << k << ", shot " << i + 1 << ": gained " << gained
-                         << " of " << shot_power;
+    EXPECT_LE(err, 5e-3) << "k = " << k << ", shot " << i + 1 << ": gained " << gained << " of "
+                         << shot_power;
   }
   std::printf("furnace k = %d: worst energy imbalance of a shot %.3f%% over %d shots\n", k,
               100.0 * worst, shots);
