@@ -31,7 +31,7 @@ struct Builder {
     if (d.kind == ObjectKind::Pure) {
       for (size_t i = 0; i < d.triangles.size(); ++i) {
         const auto& t = d.triangles[i];
-        // The solver squares distances in single precision: coordinates must leave room for that.
+        // The solver's kernels take distances to the fourth power in single precision.
         for (const Vec3& p : t) {
           if (!(max_component(glm::abs(p)) <= kMaxCoordinate)) {
             throw Error(i < d.triangle_locs.size() ? d.triangle_locs[i] : d.loc,

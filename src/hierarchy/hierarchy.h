@@ -44,8 +44,10 @@ struct Hierarchy {
   uint32_t dropped_degenerate = 0;  // zero-area triangles removed while building
 };
 
-/// Largest coordinate magnitude a scene may use: distances are squared in single precision.
-inline constexpr float kMaxCoordinate = 1e18f;
+/// Largest coordinate magnitude a scene may use: the form factor kernels take distances to the
+/// fourth power in single precision (A cos cos / r^2 (pi r^2 + A) grows as L^4 in the scene's
+/// size L), which must stay below 3.4e38.
+inline constexpr float kMaxCoordinate = 1e8f;
 
 /// Builds the hierarchy: computes normals, areas and boxes, drops zero-area triangles (one
 /// warning counting them), and orders triangles depth-first. Throws rad::Error if an object

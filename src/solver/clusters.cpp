@@ -224,6 +224,35 @@ void outline(const Triangles& t, const std::vector<std::array<uint32_t, 3>>& v,
     if (!used[e]) follow(e);
 }
 
+// The corners of a cluster's triangles that lie on no boundary edge, once each.
+void interior_vertices(const Triangles& t, const std::vector<std::array<uint32_t, 3>>& v,
+                       const std::vector<uint32_t>& tris, std::vector<Vec3>& out) {
+  std::vector<std::pair<uint32_t, uint32_t>> edges;
+  for (uint32_t i : tris)
+    for (int k = 0; k < 3; ++k) edges.emplace_back(v[i][size_t(k)], v[i][size_t(k + 1) % 3]);
+  std::vector<std::pair<uint32_t, uint32_t>> sorted = edges;
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<uint32_t> on_boundary;
+  for (const auto& [a, b] : edges) {
+    if (!std::binary_search(sorted.begin(), sorted.end(), std::make_pair(b, a))) {
+      on_boundary.push_back(a), on_boundary.push_back(b);
+    }
+  }
+  std::sort(on_boundary.begin(), on_boundary.end());
+  std::vector<std::pair<uint32_t, Vec3>> inner;
+  for (uint32_t i : tris) {
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t id = v[i][size_t(k)];
+      if (!std::binary_search(on_boundary.begin(), on_boundary.end(), id))
+        inner.emplace_back(id, t.corners[i][size_t(k)]);
+    }
+  }
+  std::sort(inner.begin(), inner.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (size_t i = 0; i < inner.size(); ++i)
+    if (i == 0 || inner[i].first != inner[i - 1].first) out.push_back(inner[i].second);
+}
+
 }  // namespace
 
 Clusters make_clusters(const Hierarchy& h, float max_extent) {
@@ -259,6 +288,7 @@ Clusters make_clusters(const Hierarchy& h, float max_extent) {
   k.cluster_of.assign(t.size(), 0);
   k.first.push_back(0);
   k.edge_first.push_back(0);
+  k.interior_first.push_back(0);
   std::vector<std::vector<uint32_t>> parts;
   for (size_t r : order) {
     parts.clear();
@@ -289,6 +319,8 @@ Clusters make_clusters(const Hierarchy& h, float max_extent) {
       const bool planar = region_planar[r] || tris.size() == 1;
       k.first.push_back(uint32_t(k.polygons.size()));
       outline(t, v, tris, k.edge_a, k.edge_b);
+      if (!planar) interior_vertices(t, v, tris, k.interior);
+      k.interior_first.push_back(uint32_t(k.interior.size()));
       k.edge_first.push_back(uint32_t(k.edge_a.size()));
       k.centroid.push_back(centroid);
       k.axis.push_back(axis);

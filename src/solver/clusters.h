@@ -29,6 +29,12 @@ struct Clusters {
   std::vector<uint32_t> cluster_of;  // per triangle
   std::vector<uint32_t> edge_first;  // size() + 1 entries
   std::vector<Vec3> edge_a, edge_b;  // outline edges a -> b
+  /// Curved clusters only: the corners on no outline edge (interior[interior_first[c] ..]).
+  /// Where a receiver's tangent plane cuts the cluster's box, the outline's clipping is exact
+  /// only if none of them lies behind the plane (else the plane may cut a loop that meets no
+  /// outline edge, as inside a dome).
+  std::vector<uint32_t> interior_first;  // size() + 1 entries
+  std::vector<Vec3> interior;
   std::vector<Vec3> centroid;        // area centroid
   std::vector<Vec3> axis;            // unit area-weighted mean normal
   std::vector<float> area;

@@ -131,9 +131,15 @@ Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroi
     na += k[i] > 0.0f ? 1 : 0;
   }
 
-  // The exact form factor needs x in front of every triangle of the source; a curved source
-  // seen from near its own surface falls back to the samples' EQ 7 sum.
-  const bool analytic = st.method == FormFactorMethod::Analytic && side > 0;
+  // The exact form factor needs x in front of every triangle of the source; for a curved source
+  // cut by x's tangent plane, also every corner off its outline in front of that plane, else the
+  // plane may cut a loop that meets no outline edge (inside a dome), which the outline's
+  // clipping cannot see. Otherwise the samples' EQ 7 sum.
+  bool analytic = st.method == FormFactorMethod::Analytic && side > 0;
+  if (analytic && !src.planar &&
+      glm::dot(src.box.center() - x, n) - glm::dot(src.box.extent() * 0.5f, glm::abs(n)) <= 0.0f) {
+    for (const Vec3& q : src.interior) analytic &= glm::dot(q - x, n) >= 0.0f;
+  }
   float ff = 0.0f;
   if (analytic) {
     const Vec3 to_source = src.centroid - x;

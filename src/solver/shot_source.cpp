@@ -88,6 +88,8 @@ ShotSource make_shot_source(const SolverState& s, int32_t c) {
   src.extent = k.extent[ci];
   src.edge_a.assign(k.edge_a.begin() + k.edge_first[ci], k.edge_a.begin() + k.edge_first[ci + 1]);
   src.edge_b.assign(k.edge_b.begin() + k.edge_first[ci], k.edge_b.begin() + k.edge_first[ci + 1]);
+  src.interior.assign(k.interior.begin() + k.interior_first[ci],
+                      k.interior.begin() + k.interior_first[ci + 1]);
 
   const int m = sample_grid_for(s, src.extent);
   const uint32_t n = uint32_t(m * m);

@@ -42,6 +42,7 @@ struct ShotSource {
   float area = 0.0f;
   float extent = 0.0f;               // box diagonal
   std::vector<Vec3> edge_a, edge_b;  // outline, for the exact contour form factor
+  std::vector<Vec3> interior;        // curved only: corners on no outline edge (clusters.h)
   SampleLanes sample;                // n samples spread by area, one per stratum
   size_t sample_count = 0;           // samples in `sample` (its lanes less the padding)
   // Where the shadow rays to the samples end: each stratum's point nearest the centroid of its

@@ -8,6 +8,7 @@
 
 #include "scene_builder.h"
 #include "solver/form_factor.h"
+#include "solver/shoot.h"
 #include "solver/solver.h"
 
 namespace rad {
@@ -199,6 +200,64 @@ TEST(Clusters, TessellatedFurnaceKeepsEOverOneMinusRho) {
               (long long)s.shots, mean, 100.0 * (mean / 2.0 - 1.0), 100.0 * worst);
   EXPECT_NEAR(mean, 2.0, 0.01);
   EXPECT_LE(worst, 0.02) << "the analytic scenes' worst-vertex bound";
+}
+
+}  // namespace
+}  // namespace rad
+namespace rad {
+namespace {
+
+// Inside a shallow dome (the inner face of a spherical cap: one curved cluster), a receiver
+// below the rim facing up: its tangent plane cuts the dome along a loop that meets no outline
+// edge, so the outline's clipping would count the part below the plane negatively. The gather
+// must agree with the exact sum of the clipped triangle form factors.
+TEST(Clusters, InsideADomeTheTangentPlaneLoopIsNotMissed) {
+  SceneDescription d;
+  ObjectDescription o;
+  o.name = "dome";
+  o.material = {Vec3(0.5f), Vec3(1.0f)};
+  const int rings = 12, slices = 48;
+  const float cap = 20.0f * 3.14159265f / 180.0f;
+  auto at = [&](int i, int j) {  // the unit sphere around the origin, the cap around -y
+    const float th = cap * float(i) / float(rings), ph = 2 * 3.14159265f * float(j) / slices;
+    return Vec3(std::sin(th) * std::cos(ph), -std::cos(th), std::sin(th) * std::sin(ph));
+  };
+  auto add = [&](Vec3 a, Vec3 b, Vec3 c) {  // facing the sphere's centre
+    if (glm::dot(glm::cross(b - a, c - a), -(a + b + c)) < 0.0f) std::swap(b, c);
+    o.triangles.push_back({a, b, c});
+  };
+  for (int i = 0; i < rings; ++i) {
+    for (int j = 0; j < slices; ++j) {
+      if (i > 0) add(at(i, j), at(i, j + 1), at(i + 1, j + 1));
+      add(at(i, j), at(i + 1, j + 1), at(i + 1, j));
+    }
+  }
+  o.triangle_locs.resize(o.triangles.size());
+  d.roots.push_back(0);
+  d.objects.push_back(o);
+  const Hierarchy h = build_hierarchy(d);
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  SolverOptions opt;
+  opt.max_size = 1.0f;  // one cluster
+  const SolverState s = make_solver_state(h, opt);
+  ASSERT_EQ(s.clusters.size(), 1u);
+  ASSERT_FALSE(s.clusters.planar[0]);
+  const ShotSource src = make_shot_source(s, 0);
+  const Vec3 x(0.05f, -0.97f, 0.0f), n(0.0f, 1.0f, 0.0f);
+  double exact = 0.0;
+  for (size_t t = 0; t < h.triangles.size(); ++t) {
+    const auto& k = h.triangles.corners[t];
+    exact += point_to_triangle_form_factor(x, n, k[0], k[1], k[2], Arithmetic::Double);
+  }
+  GatherSettings g = gather_settings(s);
+  g.shadows = false;
+  g.inset = 0.0f;
+  GatherScratch sc;
+  const double got = gather_from_source(x, n, x, src, *vis, g, sc).x;  // unit emission
+  const double outline = point_to_outline_form_factor(
+      x, n, src.edge_a.data(), src.edge_b.data(), src.edge_a.size(), src.axis, Arithmetic::Double);
+  std::printf("dome: exact %.4f, gathered %.4f, outline alone %.4f\n", exact, got, outline);
+  EXPECT_NEAR(got, exact, 0.05 * exact);
 }
 
 }  // namespace
