@@ -147,31 +147,37 @@ void split_region(const Triangles& t, std::vector<uint32_t> tris, float max_exte
   split_region(t, std::vector<uint32_t>(tris.begin() + long(mid), tris.end()), max_extent, parts);
 }
 
-// The directed boundary edges of a cluster with collinear runs merged.
-void outline(const Triangles& t, const std::vector<std::array<uint32_t, 3>>& v,
-             const std::vector<uint32_t>& tris, std::vector<Vec3>& ea, std::vector<Vec3>& eb) {
-  struct Directed {
-    uint32_t a, b;
-    Vec3 pa, pb;
-  };
-  std::vector<std::pair<uint32_t, uint32_t>> all;
+// A directed edge of a cluster's boundary: welded vertex ids and positions.
+struct Directed {
+  uint32_t a, b;
+  Vec3 pa, pb;
+};
+
+// The edges of the cluster's triangles used by one of them only (no reverse edge in the cluster),
+// in the triangles' order.
+std::vector<Directed> boundary_edges(const Triangles& t,
+                                     const std::vector<std::array<uint32_t, 3>>& v,
+                                     const std::vector<uint32_t>& tris) {
+  std::vector<std::pair<uint32_t, uint32_t>> sorted;
   for (uint32_t i : tris)
-    for (int k = 0; k < 3; ++k) all.emplace_back(v[i][size_t(k)], v[i][size_t(k + 1) % 3]);
-  std::vector<std::pair<uint32_t, uint32_t>> sorted = all;
+    for (int k = 0; k < 3; ++k) sorted.emplace_back(v[i][size_t(k)], v[i][size_t(k + 1) % 3]);
   std::sort(sorted.begin(), sorted.end());
   std::vector<Directed> bnd;
-  size_t n = 0;
   for (uint32_t i : tris) {
-    for (int k = 0; k < 3; ++k, ++n) {
-      const auto [a, b] = all[n];
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = v[i][size_t(k)], b = v[i][size_t(k + 1) % 3];
       if (std::binary_search(sorted.begin(), sorted.end(), std::make_pair(b, a))) continue;
       bnd.push_back({a, b, t.corners[i][size_t(k)], t.corners[i][size_t(k + 1) % 3]});
     }
   }
+  return bnd;
+}
+
+// The boundary edges with collinear runs merged.
+void outline(const std::vector<Directed>& bnd, std::vector<Vec3>& ea, std::vector<Vec3>& eb) {
   // Merge: a vertex with exactly one boundary edge in and one out, on a straight line, is
   // dropped. Chains are followed from edges whose start cannot be dropped.
   std::vector<std::pair<uint32_t, uint32_t>> out_of;  // (start vertex, edge)
-  std::vector<uint32_t> in_count_v;
   for (uint32_t e = 0; e < bnd.size(); ++e) out_of.emplace_back(bnd[e].a, e);
   std::sort(out_of.begin(), out_of.end());
   auto unique_out = [&](uint32_t vertex) -> int64_t {
@@ -226,18 +232,10 @@ void outline(const Triangles& t, const std::vector<std::array<uint32_t, 3>>& v,
 
 // The corners of a cluster's triangles that lie on no boundary edge, once each.
 void interior_vertices(const Triangles& t, const std::vector<std::array<uint32_t, 3>>& v,
-                       const std::vector<uint32_t>& tris, std::vector<Vec3>& out) {
-  std::vector<std::pair<uint32_t, uint32_t>> edges;
-  for (uint32_t i : tris)
-    for (int k = 0; k < 3; ++k) edges.emplace_back(v[i][size_t(k)], v[i][size_t(k + 1) % 3]);
-  std::vector<std::pair<uint32_t, uint32_t>> sorted = edges;
-  std::sort(sorted.begin(), sorted.end());
+                       const std::vector<uint32_t>& tris, const std::vector<Directed>& bnd,
+                       std::vector<Vec3>& out) {
   std::vector<uint32_t> on_boundary;
-  for (const auto& [a, b] : edges) {
-    if (!std::binary_search(sorted.begin(), sorted.end(), std::make_pair(b, a))) {
-      on_boundary.push_back(a), on_boundary.push_back(b);
-    }
-  }
+  for (const Directed& d : bnd) on_boundary.push_back(d.a), on_boundary.push_back(d.b);
   std::sort(on_boundary.begin(), on_boundary.end());
   std::vector<std::pair<uint32_t, Vec3>> inner;
   for (uint32_t i : tris) {
@@ -318,8 +316,9 @@ Clusters make_clusters(const Hierarchy& h, float max_extent) {
       }
       const bool planar = region_planar[r] || tris.size() == 1;
       k.first.push_back(uint32_t(k.polygons.size()));
-      outline(t, v, tris, k.edge_a, k.edge_b);
-      if (!planar) interior_vertices(t, v, tris, k.interior);
+      const std::vector<Directed> bnd = boundary_edges(t, v, tris);
+      outline(bnd, k.edge_a, k.edge_b);
+      if (!planar) interior_vertices(t, v, tris, bnd, k.interior);
       k.interior_first.push_back(uint32_t(k.interior.size()));
       k.edge_first.push_back(uint32_t(k.edge_a.size()));
       k.centroid.push_back(centroid);
