@@ -95,7 +95,10 @@ bool near_field_mean(const Vec3& x, const Vec3& n, const ShotSource& src,
 int receiver_side(const ShotSource& src, const Vec3& x) {
   const Vec3 d = x - src.centroid;
   const float h = glm::dot(d, src.axis);
-  if (src.planar) return h > 0.0f ? 1 : -1;
+  // A point within a millionth of the extent of a planar source's plane lies in it (a coplanar
+  // neighbour, in a rotated scene where coplanarity holds only to rounding): its form factor
+  // is 0, and the outline's clipping would turn the rounding into polar-angle terms of O(1).
+  if (src.planar) return h > 1e-6f * src.extent ? 1 : -1;
   const float len = glm::length(d);
   if (!(len > 0.0f)) return 0;
   const float cp = h / len, sp = std::sqrt(std::max(0.0f, 1.0f - cp * cp));
