@@ -21,19 +21,6 @@ std::vector<Vec3> regular_sample_barycentrics(int m) {
   return out;
 }
 
-std::vector<uint32_t> nearest_samples(const std::vector<Vec3>& fine,
-                                      const std::vector<Vec3>& coarse) {
-  std::vector<uint32_t> out(fine.size(), 0);
-  for (size_t i = 0; i < fine.size(); ++i) {
-    float best = 1e30f;
-    for (size_t j = 0; j < coarse.size(); ++j) {
-      const Vec3 d = fine[i] - coarse[j];
-      if (glm::dot(d, d) < best) best = glm::dot(d, d), out[i] = uint32_t(j);
-    }
-  }
-  return out;
-}
-
 uint32_t locate_leaf(const PolygonMesh& p, Vec3 w, Vec3* leaf_bary) {
   uint32_t e = 0;
   while (!p.elements[e].leaf()) {

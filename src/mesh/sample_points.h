@@ -13,12 +13,6 @@ namespace rad {
 /// uniformly, each standing for area A/n.
 std::vector<Vec3> regular_sample_barycentrics(int m);
 
-/// For each point of `fine` (barycentrics), the index of the nearest point of `coarse`. For
-/// regular grids where `fine` is a 4x refinement of `coarse`, that is the coarse sample whose
-/// sub-triangle holds the fine one.
-std::vector<uint32_t> nearest_samples(const std::vector<Vec3>& fine,
-                                      const std::vector<Vec3>& coarse);
-
 /// The leaf element of `p` holding the point with polygon barycentrics `bary`, and the
 /// point's barycentrics within that leaf. Follows the 1->4 split order of split_element.
 uint32_t locate_leaf(const PolygonMesh& p, Vec3 bary, Vec3* leaf_bary);
