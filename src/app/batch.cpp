@@ -8,6 +8,7 @@
 
 #include "app/scene_job.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "export/image_file.h"
 #include "export/mesh_file.h"
 
@@ -83,20 +84,22 @@ int run_batch(const CommandLine& cmd) {
     try {
       row.result = run_scene_job(cmd, job);
       row.detail = to_string(row.result.stop);
+      if (row.result.stop == StopReason::Interrupted) row.status = "partial";
     } catch (const std::exception& e) {
       std::fprintf(stderr, "%s\n", e.what());
       row.status = "FAILED";
       row.detail = e.what();
     }
     rows.push_back(row);
+    if (interrupt_signal()) break;  // Ctrl-C: the scene in progress was written; no more
   }
 
   int failed = 0;
   std::printf("\n%-40s %-7s %7s %9s %9s  %s\n", "scene", "status", "shots", "vertices", "seconds",
               "result");
   for (const Row& r : rows) {
-    failed += r.status != "ok";
-    if (r.status == "ok") {
+    failed += r.status == "FAILED";
+    if (r.status != "FAILED") {
       std::printf("%-40s %-7s %7lld %9zu %9.2f  %s\n", r.scene.c_str(), r.status.c_str(),
                   static_cast<long long>(r.result.shots), r.result.vertices, r.result.seconds,
                   r.detail.c_str());
@@ -106,6 +109,7 @@ int run_batch(const CommandLine& cmd) {
     }
   }
   std::printf("%zu scene%s, %d failed\n", rows.size(), rows.size() == 1 ? "" : "s", failed);
+  if (interrupt_signal()) return interrupted_exit_status(interrupt_signal());
   return failed ? 1 : 0;
 }
 

@@ -123,6 +123,13 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
                  "(default: frames the scene from its open side; fov 39.3)");
   app.add_option("--size", size, "Image size WxH in pixels")->capture_default_str();
   app.add_option("--stats-json", c.stats_json, "Write run statistics as JSON to this file");
+  app.add_option("--checkpoint", c.checkpoint,
+                 "Save the solver state to this file (every --checkpoint-every seconds, when "
+                 "stopped by Ctrl-C or SIGTERM, and at the end); resume from it when it exists");
+  app.add_option("--checkpoint-every", c.checkpoint_every,
+                 "Seconds between checkpoints (0: after every shot)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   app.add_flag("-q,--quiet", c.quiet, "Print errors only");
   try {
     app.parse(args);
@@ -160,6 +167,9 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
       const size_t comma = std::min(formats.find(',', at), formats.size());
       if (comma > at) c.batch_formats.push_back(formats.substr(at, comma - at));
       at = comma + 1;
+    }
+    if (!c.checkpoint.empty() && (c.batch || c.serve || c.check)) {
+      throw CLI::ValidationError("--checkpoint", "applies to one scene solved from the command line");
     }
     if (!c.check && !c.batch && !c.serve && c.output.empty() && c.images.empty()) {
       throw CLI::RequiredError("output (or --image, or --check)");

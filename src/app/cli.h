@@ -28,6 +28,10 @@ struct CommandLine {
   std::optional<Camera> camera;     // --camera; none: default_camera frames the scene
   int image_width = 800, image_height = 800;  // --size WxH
   std::string stats_json;
+  // --checkpoint FILE: the solver state saved every checkpoint_every seconds, when stopped and
+  // at the end; a run started with the file present resumes from it.
+  std::string checkpoint;
+  double checkpoint_every = 60.0;
   bool quiet = false;
   // rad batch OUTDIR SCENE...: every scene solved with the same options.
   bool batch = false;

@@ -5,6 +5,7 @@
 #include "app/cli.h"
 #include "app/scene_job.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "hierarchy/hierarchy.h"
 #include "scene/parser.h"
 #include "serve/run_serve.h"
@@ -42,7 +43,8 @@ int run(const rad::CommandLine& cmd) {
     return 0;
   }
   run_scene_job(cmd, SceneJob{cmd.scene, cmd.output, cmd.images, cmd.stats_json});
-  return 0;
+  // Stopped by Ctrl-C or SIGTERM: the outputs hold the solution so far; say so in the status.
+  return interrupt_signal() ? interrupted_exit_status(interrupt_signal()) : 0;
 }
 
 }  // namespace

@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <tbb/info.h>
 
-#include "export/atomic_file.h"
+#include "core/atomic_file.h"
 #include "mesh/patch_mesh.h"
 
 namespace rad {
@@ -70,6 +70,8 @@ void write_stats_json(const std::string& path, const CommandLine& cmd, const std
         {"converge", s.options.converge},
         {"min_size", s.min_size}}},
       {"stop_reason", to_string(stop)},
+      {"partial", stop == StopReason::Interrupted},
+      {"checkpoint", cmd.checkpoint.empty() ? nlohmann::json(nullptr) : nlohmann::json(cmd.checkpoint)},
       {"rays",
        {{"shot", r.rays}, {"hits_on_polygons", r.occluded}, {"box_trials", r.box_trials},
         {"box_hits", r.box_hits}, {"cells_visited", r.cells_visited},

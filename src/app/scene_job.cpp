@@ -6,10 +6,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fmt/format.h>
 #include <memory>
 
 #include "app/report.h"
+#include "core/interrupt.h"
 #include "core/progress.h"
 #include "export/exposure.h"
 #include "export/image_file.h"
@@ -20,6 +22,7 @@
 #include "hierarchy/hierarchy.h"
 #include "mesh/patch_mesh.h"
 #include "scene/parser.h"
+#include "solver/checkpoint.h"
 #include "visibility/backend.h"
 
 namespace rad {
@@ -56,20 +59,43 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job) {
   const std::unique_ptr<VisibilityBackend> visibility =
       make_visibility_backend(cmd.backend, hierarchy, VisibilityOptions{cmd.packets});
   SolverState state = make_solver_state(hierarchy, cmd.solver);
+
+  const uint64_t fingerprint =
+      cmd.checkpoint.empty() ? 0 : solve_fingerprint(hierarchy, cmd.solver, cmd.backend);
+  if (!cmd.checkpoint.empty() && std::filesystem::exists(cmd.checkpoint)) {
+    read_checkpoint(cmd.checkpoint, state, fingerprint);
+    say(fmt::format("Resuming from checkpoint {} ({} shots done)", cmd.checkpoint, state.shots));
+  }
   times.build = since(t);
 
   say(fmt::format("Starting Computation ({} triangles, {} backend, {} thread{})",
                   hierarchy.triangles.size(), to_string(cmd.backend), threads,
                   threads == 1 ? "" : "s"));
   t = Clock::now();
+  auto saved = Clock::now();
+  const auto save = [&] {
+    if (cmd.checkpoint.empty()) return;
+    write_checkpoint(cmd.checkpoint, state, fingerprint);
+    saved = Clock::now();
+  };
   const double log_goal = std::log(std::max(cmd.solver.converge, 1e-12));
-  const StopReason stop = solve(state, *visibility, [&](const SolverState& s, const ShotRecord& r) {
-    const double f = r.unshot_fraction > 0 ? std::log(r.unshot_fraction) / log_goal : 1.0;
-    progress.update(f, fmt::format("shot {}  unshot {:.2e}  subdivisions {}", r.shot,
-                                   r.unshot_fraction, s.stats.subdivisions));
-  });
+  install_interrupt_handlers();
+  const StopReason stop = solve(
+      state, *visibility,
+      [&](const SolverState& s, const ShotRecord& r) {
+        const double f = r.unshot_fraction > 0 ? std::log(r.unshot_fraction) / log_goal : 1.0;
+        progress.update(f, fmt::format("shot {}  unshot {:.2e}  subdivisions {}", r.shot,
+                                       r.unshot_fraction, s.stats.subdivisions));
+        if (since(saved) >= cmd.checkpoint_every) save();
+      },
+      [] { return interrupt_signal() != 0; });
+  save();
   times.solve = since(t);
   progress.finish(fmt::format("{} after {} shots", to_string(stop), state.shots));
+  if (stop == StopReason::Interrupted) {
+    say(fmt::format("Stopped by signal {}: writing the solution so far{}", interrupt_signal(),
+                    cmd.checkpoint.empty() ? "" : " (resume with the same command)"));
+  }
 
   t = Clock::now();
   const OutputMesh mesh = make_output_mesh(state, cmd.ambient);

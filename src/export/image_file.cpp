@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "export/atomic_file.h"
+#include "core/atomic_file.h"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STB_IMAGE_WRITE_STATIC

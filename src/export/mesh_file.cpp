@@ -4,7 +4,7 @@
 #include <filesystem>
 
 #include "core/error.h"
-#include "export/atomic_file.h"
+#include "core/atomic_file.h"
 #include "export/gltf_writer.h"
 #include "export/obj_writer.h"
 #include "export/off_writer.h"

@@ -111,16 +111,20 @@ const char* to_string(StopReason r) {
       return "time limit reached";
     case StopReason::NothingToShoot:
       return "nothing left to shoot";
+    case StopReason::Interrupted:
+      return "interrupted";
   }
   return "?";
 }
 
 StopReason solve(SolverState& s, const VisibilityBackend& vis,
-                 const std::function<void(const SolverState&, const ShotRecord&)>& on_shot) {
+                 const std::function<void(const SolverState&, const ShotRecord&)>& on_shot,
+                 const std::function<bool()>& interrupted) {
   const auto start = std::chrono::steady_clock::now();
   const SolverOptions& o = s.options;
   for (;;) {
     if (s.unshot_fraction() <= o.converge) return StopReason::Converged;
+    if (interrupted && interrupted()) return StopReason::Interrupted;
     if (o.max_shots >= 0 && s.shots >= o.max_shots) return StopReason::MaxShots;
     if (o.time_limit > 0.0 &&
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >=

@@ -24,12 +24,14 @@ std::optional<int32_t> choose_shooter(const SolverState& s);
 std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis);
 
 /// Why solve() stopped.
-enum class StopReason { Converged, MaxShots, TimeLimit, NothingToShoot };
+enum class StopReason { Converged, MaxShots, TimeLimit, NothingToShoot, Interrupted };
 const char* to_string(StopReason r);
 
-/// Steps until unshot <= converge x emitted, or max shots, or the time limit. `on_shot` (if
-/// set) is called after every shot, between steps, where the state may be read.
+/// Steps until unshot <= converge x emitted, or max shots, or the time limit, or `interrupted`
+/// (if set, polled before every shot) returns true. `on_shot` (if set) is called after every
+/// shot, between steps, where the state may be read. The time limit counts from this call.
 StopReason solve(SolverState& s, const VisibilityBackend& vis,
-                 const std::function<void(const SolverState&, const ShotRecord&)>& on_shot = {});
+                 const std::function<void(const SolverState&, const ShotRecord&)>& on_shot = {},
+                 const std::function<bool()>& interrupted = {});
 
 }  // namespace rad

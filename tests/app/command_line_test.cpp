@@ -1,6 +1,11 @@
 // The rad executable as a user runs it: exit codes, messages, and what it leaves on disk.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <thread>
 
 #include <array>
 #include <cstdio>
@@ -247,12 +252,97 @@ TEST(CommandLine, TwentyThousandNestedAssembliesEndInOneError) {
   fs::remove(des);
 }
 
+// Starts rad in the background (output to /dev/null); returns its pid.
+pid_t spawn_rad(const std::vector<std::string>& args) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    std::vector<char*> argv;
+    std::string exe = RAD_BINARY_DIR "/rad";
+    argv.push_back(exe.data());
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    freopen("/dev/null", "w", stdout);
+    freopen("/dev/null", "w", stderr);
+    execv(exe.c_str(), argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+// Waits until `file` exists (the run has reached that point); false after 60 s.
+bool wait_for_file(const fs::path& file) {
+  for (int i = 0; i < 6000 && !fs::exists(file); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return fs::exists(file);
+}
+
+// A run killed with SIGKILL mid-solve, started again with the same command, resumes from its
+// checkpoint and writes exactly the mesh of a run never stopped.
+TEST(CommandLine, KilledRunResumesFromItsCheckpointToTheSameBytes) {
+  const fs::path dir = fs::temp_directory_path() / ("rad_test_ckpt_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const std::string scene = (kScenes / "cornell_box.des").string();
+  const std::string whole = (dir / "whole.ply").string(), part = (dir / "part.ply").string();
+  const std::string ckpt = (dir / "run.ckpt").string();
+  ASSERT_EQ(run_rad("-q --max-shots 30 " + scene + " " + whole).code, 0);
+
+  const std::vector<std::string> args{"-q", "--max-shots", "30", "--checkpoint", ckpt,
+                                      "--checkpoint-every", "0", scene, part};
+  const pid_t pid = spawn_rad(args);
+  ASSERT_TRUE(wait_for_file(ckpt));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  kill(pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "finished before the kill: make the run longer";
+  EXPECT_FALSE(fs::exists(part)) << "no output before the end";
+
+  std::string cmd;
+  for (const std::string& a : args) cmd += a + " ";
+  const RadRun r = run_rad(cmd.substr(3));  // without -q: it says it resumes
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("Resuming from checkpoint"), std::string::npos) << r.out;
+  EXPECT_TRUE(read_file(whole) == read_file(part)) << "resumed output differs";
+  for (const auto& e : fs::directory_iterator(dir)) {
+    EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
+  }
+  fs::remove_all(dir);
+}
+
+// Ctrl-C and SIGTERM stop after the shot in progress: the solution so far is written, marked
+// partial in the stats, with the checkpoint, and the exit status says which signal (130, 143).
+TEST(CommandLine, SigintAndSigtermWriteThePartialSolutionAndTheCheckpoint) {
+  for (const int sig : {SIGINT, SIGTERM}) {
+    const fs::path dir = fs::temp_directory_path() /
+                         ("rad_test_sig_" + std::to_string(getpid()) + "_" + std::to_string(sig));
+    fs::create_directories(dir);
+    const std::string ckpt = (dir / "run.ckpt").string(), ply = (dir / "out.ply").string();
+    const std::string json = (dir / "stats.json").string();
+    const pid_t pid = spawn_rad({"-q", "--checkpoint", ckpt, "--checkpoint-every", "0",
+                                 "--stats-json", json, (kScenes / "cornell_box.des").string(),
+                                 ply});
+    ASSERT_TRUE(wait_for_file(ckpt));
+    kill(pid, sig);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status)) << "ended by the signal itself";
+    EXPECT_EQ(WEXITSTATUS(status), 128 + sig);
+    EXPECT_EQ(read_file(ply).rfind("ply\n", 0), 0u);
+    const std::string stats = read_file(json);
+    EXPECT_NE(stats.find("\"partial\": true"), std::string::npos) << stats.substr(0, 400);
+    EXPECT_NE(stats.find("\"stop_reason\": \"interrupted\""), std::string::npos);
+    EXPECT_TRUE(fs::exists(ckpt));
+    fs::remove_all(dir);
+  }
+}
+
 TEST(CommandLine, HelpListsTheOptions) {
   const RadRun r = run_rad("--help");
   EXPECT_EQ(r.code, 0);
   for (const char* opt : {"--backend", "--threads", "--samples", "--threshold", "--converge",
                           "--max-shots", "--time-limit", "--stats-json", "--no-shadows",
-                          "--min-size", "--check"}) {
+                          "--min-size", "--check", "--checkpoint", "--checkpoint-every"}) {
     EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
   }
 }

@@ -1,5 +1,6 @@
-#include "export/atomic_file.h"
+#include "core/atomic_file.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -9,6 +10,15 @@
 #include "core/error.h"
 
 namespace rad {
+
+namespace {
+void sync_path(const std::string& p, const std::string& name) {
+  const int fd = ::open(p.c_str(), O_RDONLY | O_CLOEXEC);
+  const bool ok = fd >= 0 && ::fsync(fd) == 0;
+  if (fd >= 0) ::close(fd);
+  if (!ok) throw Error(SourceLoc{name}, std::string("cannot sync to disk: ") + std::strerror(errno));
+}
+}  // namespace
 
 AtomicFile::AtomicFile(std::string path)
     : path_(std::move(path)), temp_(path_ + ".tmp-" + std::to_string(getpid())) {
@@ -30,10 +40,19 @@ void AtomicFile::commit() {
   const bool ok = bool(out_);
   out_.close();
   if (!ok || out_.fail()) throw Error(SourceLoc{path_}, "write failed (disk full?)");
+  if (durable_) {
+    // The data must be on disk before the rename makes it the file (a crash in between would
+    // otherwise leave a complete name over incomplete data), and the rename itself after it.
+    sync_path(temp_, path_);
+  }
   if (std::rename(temp_.c_str(), path_.c_str()) != 0) {
     throw Error(SourceLoc{path_}, std::string("cannot rename into place: ") + std::strerror(errno));
   }
   committed_ = true;
+  if (durable_) {
+    const size_t slash = path_.find_last_of('/');
+    sync_path(slash == std::string::npos ? "." : path_.substr(0, slash + 1), path_);
+  }
 }
 
 }  // namespace rad

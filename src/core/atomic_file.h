@@ -1,5 +1,6 @@
 // Output files that appear complete or not at all: written under a temporary name in the same
 // folder, renamed over the final name only when complete.
+// A process killed at any point leaves the old file or the new one, never a torn one.
 #pragma once
 
 #include <fstream>
@@ -17,6 +18,9 @@ class AtomicFile {
   AtomicFile& operator=(const AtomicFile&) = delete;
 
   std::ofstream& stream() { return out_; }
+  /// Makes commit() fsync the data before the rename and the folder after it, so a power cut
+  /// leaves the old file or the new one (checkpoints need it; outputs can be rewritten).
+  void make_durable() { durable_ = true; }
   /// Flushes, closes and renames onto the final path; throws rad::Error on any failure.
   void commit();
 
@@ -24,6 +28,7 @@ class AtomicFile {
   std::string path_, temp_;
   std::ofstream out_;
   bool committed_ = false;
+  bool durable_ = false;
 };
 
 }  // namespace rad

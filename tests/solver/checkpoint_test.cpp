@@ -1,0 +1,157 @@
+// Checkpoints: a solve saved and resumed continues exactly as one never stopped, and a file of
+// another solve, a damaged one or a truncated one is refused without touching the state.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "scene_builder.h"
+#include "solver/checkpoint.h"
+#include "solver/solver.h"
+
+namespace rad {
+namespace {
+
+namespace fs = std::filesystem;
+
+Hierarchy lit_box() {
+  SceneDescription d;
+  testing::add_closed_box(d, Vec3(0), Vec3(1, 1, 1), Vec3(0.6f, 0.5f, 0.4f), Vec3(0), 2);
+  testing::add_quad(d, "lamp", {0.4f, 0.4f, 0.99f}, {0.4f, 0.6f, 0.99f}, {0.6f, 0.6f, 0.99f},
+                    {0.6f, 0.4f, 0.99f}, Vec3(0), Vec3(5));
+  testing::add_quad(d, "block", {0.2f, 0.2f, 0.3f}, {0.7f, 0.2f, 0.3f}, {0.7f, 0.7f, 0.3f},
+                    {0.2f, 0.7f, 0.3f}, Vec3(0.5f), Vec3(0));
+  return build_hierarchy(d);
+}
+
+std::vector<MeshVertex> all_vertices(const SolverState& s) {
+  std::vector<MeshVertex> v;
+  for (const PolygonMesh& p : s.mesh.polygons) v.insert(v.end(), p.vertices.begin(), p.vertices.end());
+  return v;
+}
+
+fs::path temp_file(const std::string& name) {
+  return fs::temp_directory_path() / (name + "-" + std::to_string(getpid()));
+}
+
+TEST(Checkpoint, ResumedSolveEndsBitIdenticalToAnUninterruptedOne) {
+  const Hierarchy h = lit_box();
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  SolverOptions o;
+  o.max_shots = 14;
+  SolverState whole = make_solver_state(h, o);
+  solve(whole, *vis);
+
+  const fs::path file = temp_file("rad-ckpt");
+  o.max_shots = 6;
+  SolverState first = make_solver_state(h, o);
+  solve(first, *vis);
+  const uint64_t id = solve_fingerprint(h, o, BackendKind::Embree);
+  write_checkpoint(file, first, id);
+
+  o.max_shots = 14;  // the stop criteria are not part of the identity: a resumed run may go on
+  ASSERT_EQ(id, solve_fingerprint(h, o, BackendKind::Embree));
+  SolverState resumed = make_solver_state(h, o);
+  read_checkpoint(file, resumed, id);
+  EXPECT_EQ(resumed.shots, 6);
+  solve(resumed, *vis);
+  fs::remove(file);
+
+  ASSERT_EQ(resumed.shots, whole.shots);
+  EXPECT_EQ(resumed.absorbed_energy, whole.absorbed_energy);
+  const auto a = all_vertices(whole), b = all_vertices(resumed);
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(MeshVertex)));
+  ASSERT_EQ(resumed.history.size(), whole.history.size());
+  for (size_t i = 0; i < whole.history.size(); ++i) {
+    EXPECT_EQ(resumed.history[i].source, whole.history[i].source) << "shot " << i + 1;
+  }
+}
+
+TEST(Checkpoint, EqualStatesWriteEqualFiles) {
+  const Hierarchy h = lit_box();
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  SolverOptions o;
+  o.max_shots = 5;
+  const fs::path f1 = temp_file("rad-ckpt-a"), f2 = temp_file("rad-ckpt-b");
+  for (const fs::path& f : {f1, f2}) {
+    SolverState s = make_solver_state(h, o);
+    solve(s, *vis);
+    s.stats.shoot_seconds = s.stats.refine_seconds = 0;  // the only fields the clock sets
+    for (ShotRecord& r : s.history) r.seconds = 0;
+    write_checkpoint(f, s, 1);
+  }
+  std::ifstream a(f1, std::ios::binary), b(f2, std::ios::binary);
+  const std::string sa{std::istreambuf_iterator<char>(a), {}}, sb{std::istreambuf_iterator<char>(b), {}};
+  EXPECT_GT(sa.size(), 1000u);
+  EXPECT_TRUE(sa == sb);
+  fs::remove(f1), fs::remove(f2);
+}
+
+std::string error_of(const fs::path& file, SolverState& s, uint64_t id) {
+  try {
+    read_checkpoint(file, s, id);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Checkpoint, RefusesAnotherSolveADamagedFileATruncatedOneAndNoCheckpoint) {
+  const Hierarchy h = lit_box();
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  SolverOptions o;
+  o.max_shots = 4;
+  SolverState s = make_solver_state(h, o);
+  solve(s, *vis);
+  const uint64_t id = solve_fingerprint(h, o, BackendKind::Embree);
+  const fs::path file = temp_file("rad-ckpt-bad");
+  write_checkpoint(file, s, id);
+  std::string bytes;
+  {
+    std::ifstream in(file, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  auto write = [&](const std::string& b) { std::ofstream(file, std::ios::binary) << b; };
+
+  SolverState fresh = make_solver_state(h, o);
+  const auto before = all_vertices(fresh);
+  auto untouched = [&] {
+    const auto now = all_vertices(fresh);
+    return fresh.shots == 0 && now.size() == before.size() &&
+           std::memcmp(now.data(), before.data(), now.size() * sizeof(MeshVertex)) == 0;
+  };
+
+  SolverOptions other = o;
+  other.subdivision_threshold *= 2;
+  EXPECT_NE(solve_fingerprint(h, other, BackendKind::Embree), id);
+  EXPECT_NE(solve_fingerprint(h, o, BackendKind::Grid), id);
+  EXPECT_NE(error_of(file, fresh, solve_fingerprint(h, other, BackendKind::Embree))
+                .find("checkpoint of another solve"),
+            std::string::npos);
+  EXPECT_TRUE(untouched());
+
+  for (size_t at : {size_t(40), bytes.size() / 2, bytes.size() - 1}) {
+    std::string damaged = bytes;
+    damaged[at] = char(damaged[at] ^ 0x10);
+    write(damaged);
+    EXPECT_NE(error_of(file, fresh, id).find("corrupt checkpoint"), std::string::npos) << at;
+    EXPECT_TRUE(untouched());
+  }
+  write(bytes.substr(0, bytes.size() / 3));
+  EXPECT_NE(error_of(file, fresh, id).find("corrupt checkpoint"), std::string::npos);
+  write("ply\nformat ascii 1.0\n");
+  EXPECT_NE(error_of(file, fresh, id).find("not a rad checkpoint"), std::string::npos);
+  fs::remove(file);
+  EXPECT_NE(error_of(file, fresh, id).find("cannot read"), std::string::npos);
+  EXPECT_TRUE(untouched());
+
+  write(bytes);
+  EXPECT_EQ(error_of(file, fresh, id), "");
+  EXPECT_EQ(fresh.shots, 4);
+  fs::remove(file);
+}
+
+}  // namespace
+}  // namespace rad
