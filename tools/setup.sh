@@ -2,7 +2,13 @@
 # configures and builds into build/ (Release with debug info).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-BUILD="${RAD_BUILD_DIR:-$ROOT/build}"
+# RAD_SANITIZE (address,undefined or thread) builds an instrumented tree in its own folder.
+RAD_SANITIZE="${RAD_SANITIZE:-}"
+if [ -n "$RAD_SANITIZE" ]; then
+  BUILD="${RAD_BUILD_DIR:-$ROOT/build-${RAD_SANITIZE//,/-}}"
+else
+  BUILD="${RAD_BUILD_DIR:-$ROOT/build}"
+fi
 
 rad_packages=(g++ cmake ninja-build pkg-config libembree-dev libtbb-dev libglm-dev libgtest-dev
   libgmock-dev libbenchmark-dev libcli11-dev libfmt-dev nlohmann-json3-dev libstb-dev
@@ -23,9 +29,9 @@ rad_install_missing() {
 
 rad_build() {
   rad_install_missing "${rad_packages[@]}"
-  if [ ! -f "$BUILD/build.ninja" ]; then
-    cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
-  fi
+  # Configured every time (a second when nothing changed), so a changed option takes effect.
+  cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DRAD_SANITIZE="$RAD_SANITIZE" ${RAD_SANITIZE:+-DRAD_BUILD_BENCH=OFF} >/dev/null
   cmake --build "$BUILD" -j "$(nproc)"
 }
 

@@ -288,7 +288,7 @@ class Parser {
 
   Tokenizer tokens_;
   int depth_ = 0;  // objects open around the one being parsed
-  static constexpr int kMaxNesting = 1000;
+  static constexpr int kMaxNesting = 256;  // real scenes nest a few deep; ASan frames are large
   SceneDescription scene_;
 };
 
