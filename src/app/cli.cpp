@@ -1,5 +1,7 @@
 #include "app/cli.h"
 
+#include "core/memory.h"
+
 #include <CLI/CLI.hpp>
 
 #include <cmath>
@@ -33,6 +35,8 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
       "vertex-to-source form factors and adaptive subdivision.\n\n"
       "  rad [options] SCENE.des OUTPUT.ply      solve and write every vertex's colour\n"
       "  rad --check SCENE.des                   parse, validate and summarise only\n"
+      "  rad --cross-check BACKEND SCENE.des     solve with --backend and BACKEND; report\n"
+      "                                          every disagreement (rays and radiosity)\n"
       "  rad batch OUTDIR SCENE... [options]     solve many scenes (SCENE may be a .txt list\n"
       "                                          of .des files); outputs and stats in OUTDIR\n"
       "  rad serve SCENE.des [--port P] [--host H] [--output FILE]\n"
@@ -68,6 +72,10 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
   app.add_flag("--check", c.check, "Parse and validate the scene, print a summary, do not solve");
   app.add_option("--backend", backend, "Shadow-ray backend: embree, grid or brute")
       ->capture_default_str();
+  std::string cross_check;
+  app.add_option("--cross-check", cross_check,
+                 "Solve with --backend and this backend too, compare their rays against brute "
+                 "force and their vertices and radiosity; exit 1 if they disagree");
   app.add_flag("!--no-packets", c.packets, "Trace shadow rays one at a time (Embree)");
   app.add_option("--threads", c.threads, "Worker threads (0 = all cores)")->capture_default_str();
   app.add_flag("!--no-shadows", c.solver.shadows, "No shadow rays: every visibility term is 1");
@@ -130,10 +138,25 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
                  "Seconds between checkpoints (0: after every shot)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  std::string max_memory;
+  app.add_option("--max-memory", max_memory,
+                 "Memory the solve may use (512M, 8G, ...; default 90% of the machine's): a scene "
+                 "that could need more is refused; a solve that reaches it stops and writes");
   app.add_flag("-q,--quiet", c.quiet, "Print errors only");
   try {
     app.parse(args);
     c.backend = parse_backend_kind(backend);
+    try {
+      if (!max_memory.empty()) c.max_memory = parse_byte_size(max_memory);
+    } catch (const Error& e) {
+      throw CLI::ValidationError("--max-memory", e.what());
+    }
+    if (!cross_check.empty()) {
+      c.cross_check = parse_backend_kind(cross_check);
+      if (c.batch || c.serve || c.check) {
+        throw CLI::ValidationError("--cross-check", "applies to one scene from the command line");
+      }
+    }
     c.tonemap = parse_tone_curve(tonemap);
     try {
       if (!camera.empty()) c.camera = parse_camera(camera);
@@ -171,7 +194,8 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
     if (!c.checkpoint.empty() && (c.batch || c.serve || c.check)) {
       throw CLI::ValidationError("--checkpoint", "applies to one scene solved from the command line");
     }
-    if (!c.check && !c.batch && !c.serve && c.output.empty() && c.images.empty()) {
+    if (!c.check && !c.cross_check && !c.batch && !c.serve && c.output.empty() &&
+        c.images.empty()) {
       throw CLI::RequiredError("output (or --image, or --check)");
     }
   } catch (const CLI::ParseError& e) {

@@ -16,6 +16,7 @@ struct CommandLine {
   std::string scene;
   std::string output;       // empty with --check
   bool check = false;       // parse, validate, summarise; no solve
+  std::optional<BackendKind> cross_check;  // --cross-check B: solve with --backend and B, compare
   BackendKind backend = BackendKind::Embree;
   bool packets = true;
   int threads = 0;          // 0: all cores
@@ -32,6 +33,7 @@ struct CommandLine {
   // at the end; a run started with the file present resumes from it.
   std::string checkpoint;
   double checkpoint_every = 60.0;
+  size_t max_memory = 0;  // --max-memory; 0: 90% of the machine's (or the cgroup's) memory
   bool quiet = false;
   // rad batch OUTDIR SCENE...: every scene solved with the same options.
   bool batch = false;

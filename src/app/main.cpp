@@ -3,6 +3,7 @@
 
 #include "app/batch.h"
 #include "app/cli.h"
+#include "app/cross_check.h"
 #include "app/scene_job.h"
 #include "core/error.h"
 #include "core/interrupt.h"
@@ -38,6 +39,7 @@ int run(const rad::CommandLine& cmd) {
   using namespace rad;
   if (cmd.batch) return run_batch(cmd);
   if (cmd.serve) return run_serve(serve_config(cmd));
+  if (cmd.cross_check) return run_cross_check(cmd);
   if (cmd.check) {
     std::fputs(summarize(build_hierarchy(parse_scene_file(cmd.scene))).c_str(), stdout);
     return 0;

@@ -70,7 +70,7 @@ void write_stats_json(const std::string& path, const CommandLine& cmd, const std
         {"converge", s.options.converge},
         {"min_size", s.min_size}}},
       {"stop_reason", to_string(stop)},
-      {"partial", stop == StopReason::Interrupted},
+      {"partial", stop == StopReason::Interrupted || stop == StopReason::MemoryLimit},
       {"checkpoint", cmd.checkpoint.empty() ? nlohmann::json(nullptr) : nlohmann::json(cmd.checkpoint)},
       {"rays",
        {{"shot", r.rays}, {"hits_on_polygons", r.occluded}, {"box_trials", r.box_trials},

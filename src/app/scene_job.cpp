@@ -12,6 +12,7 @@
 
 #include "app/report.h"
 #include "core/interrupt.h"
+#include "core/memory.h"
 #include "core/progress.h"
 #include "export/exposure.h"
 #include "export/image_file.h"
@@ -23,6 +24,7 @@
 #include "mesh/patch_mesh.h"
 #include "scene/parser.h"
 #include "solver/checkpoint.h"
+#include "solver/memory_estimate.h"
 #include "visibility/backend.h"
 
 namespace rad {
@@ -68,6 +70,28 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job) {
   }
   times.build = since(t);
 
+  // The mesh only grows by subdivision, down to --min-size: refuse a solve that could outgrow
+  // the memory before spending any time on it, and stop one that reaches it.
+  const size_t memory_limit =
+      cmd.max_memory > 0 ? cmd.max_memory : size_t(0.9 * double(machine_memory_bytes()));
+  const double now = double(resident_bytes()), growth = worst_case_growth_bytes(state);
+  double per_shot = 0.0;
+  for (size_t c = 0; c < state.clusters.size(); ++c) per_shot = std::max(per_shot, shot_log_bytes(state, c));
+  if (memory_limit > 0 && now + growth > double(memory_limit)) {
+    throw Error(SourceLoc{job.scene},
+                fmt::format("this solve could need {} ({} now, {} more if every element were "
+                            "split down to the smallest size, {:.3g}), over the limit of {}{}; "
+                            "raise --min-size, or give --max-memory to run anyway (the solve then "
+                            "stops at that limit and writes what it has)",
+                            format_bytes(now + growth), format_bytes(now), format_bytes(growth),
+                            state.min_size, format_bytes(double(memory_limit)),
+                            cmd.max_memory > 0 ? " (--max-memory)" : " (90% of this machine's)"));
+  }
+  say(fmt::format("Memory: {} now, at most {} more by subdivision and {} per shot logged "
+                  "(limit {})",
+                  format_bytes(now), format_bytes(growth), format_bytes(per_shot),
+                  format_bytes(double(memory_limit))));
+
   say(fmt::format("Starting Computation ({} triangles, {} backend, {} thread{})",
                   hierarchy.triangles.size(), to_string(cmd.backend), threads,
                   threads == 1 ? "" : "s"));
@@ -88,10 +112,18 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job) {
                                        r.unshot_fraction, s.stats.subdivisions));
         if (since(saved) >= cmd.checkpoint_every) save();
       },
-      [] { return interrupt_signal() != 0; });
+      [&]() -> std::optional<StopReason> {
+        if (interrupt_signal()) return StopReason::Interrupted;
+        if (memory_limit > 0 && resident_bytes() > memory_limit) return StopReason::MemoryLimit;
+        return std::nullopt;
+      });
   save();
   times.solve = since(t);
   progress.finish(fmt::format("{} after {} shots", to_string(stop), state.shots));
+  if (stop == StopReason::MemoryLimit) {
+    say(fmt::format("Stopped at the memory limit ({}): writing the solution so far",
+                    format_bytes(double(memory_limit))));
+  }
   if (stop == StopReason::Interrupted) {
     say(fmt::format("Stopped by signal {}: writing the solution so far{}", interrupt_signal(),
                     cmd.checkpoint.empty() ? "" : " (resume with the same command)"));

@@ -66,6 +66,10 @@ struct Server::Impl {
   std::thread thread;
   std::atomic<bool> stopping{false};
   std::atomic<uint64_t> export_counter{0};
+  // Each open event stream holds a pool thread: at most half the pool, so requests always find
+  // one free whatever the number of pages (or hostile clients) left open.
+  std::atomic<int> streams{0};
+  int max_streams = 1;
   int port = -1;
 
   Impl(Session& s, WebAssets a, const ServerOptions& o)
@@ -75,7 +79,12 @@ struct Server::Impl {
     scene = scene_json(session.hierarchy(), camera, session.options().solver.converge);
     const int threads = std::max(2, o.threads);
     http.new_task_queue = [threads] { return new httplib::ThreadPool(size_t(threads)); };
+    max_streams = std::max(1, threads / 2);
     http.set_keep_alive_timeout(2);
+    // A client that sends its request slowly, or reads its answer slowly, holds a pool thread:
+    // let go of it after 3 s.
+    http.set_read_timeout(3, 0);
+    http.set_write_timeout(3, 0);
     http.set_payload_max_length(64 * 1024);
     routes();
   }
@@ -196,6 +205,11 @@ struct Server::Impl {
   }
 
   void events(httplib::Response& res) {
+    if (streams.fetch_add(1) >= max_streams) {
+      streams.fetch_sub(1);
+      send_error(res, 503, fmt::format("too many event streams open ({}); close a page", max_streams));
+      return;
+    }
     res.set_header("Cache-Control", "no-store");
     auto last = std::make_shared<uint64_t>(0);
     auto first = std::make_shared<bool>(true);
@@ -222,7 +236,7 @@ struct Server::Impl {
       }
       sink.done();
       return true;
-    });
+    }, [this](bool) { streams.fetch_sub(1); });
   }
 
   void export_file(const ExportRequest& r, httplib::Response& res) {

@@ -29,8 +29,10 @@ bool is_loopback_host(std::string_view host);
 ///   POST /api/material /api/subdivide /api/pause /api/resume /api/restart /api/exposure
 ///   GET  /api/export.{ply,off,obj,gltf,glb,png}   the current snapshot as a download
 /// Every POST needs Content-Type: application/json; bad input answers 400 with
-/// {"error": "..."}; a full edit queue 503. When bound to loopback, requests whose Host header
-/// names another host are refused (403), so other web sites cannot reach the server.
+/// {"error": "..."}; a full edit queue 503, and so do event streams beyond half the pool (each
+/// holds a thread); a request sent or read slower than 3 s is dropped. When bound to loopback,
+/// requests whose Host header names another host are refused (403), so other web sites cannot
+/// reach the server.
 ///
 /// Threading: handlers run on the server's pool and only read immutable snapshots or queue
 /// edits (see Session); a client that goes away ends its event stream at the next write.

@@ -113,18 +113,22 @@ const char* to_string(StopReason r) {
       return "nothing left to shoot";
     case StopReason::Interrupted:
       return "interrupted";
+    case StopReason::MemoryLimit:
+      return "memory limit reached";
   }
   return "?";
 }
 
 StopReason solve(SolverState& s, const VisibilityBackend& vis,
                  const std::function<void(const SolverState&, const ShotRecord&)>& on_shot,
-                 const std::function<bool()>& interrupted) {
+                 const std::function<std::optional<StopReason>()>& stop) {
   const auto start = std::chrono::steady_clock::now();
   const SolverOptions& o = s.options;
   for (;;) {
     if (s.unshot_fraction() <= o.converge) return StopReason::Converged;
-    if (interrupted && interrupted()) return StopReason::Interrupted;
+    if (stop) {
+      if (const std::optional<StopReason> why = stop()) return *why;
+    }
     if (o.max_shots >= 0 && s.shots >= o.max_shots) return StopReason::MaxShots;
     if (o.time_limit > 0.0 &&
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >=

@@ -24,14 +24,15 @@ std::optional<int32_t> choose_shooter(const SolverState& s);
 std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis);
 
 /// Why solve() stopped.
-enum class StopReason { Converged, MaxShots, TimeLimit, NothingToShoot, Interrupted };
+enum class StopReason { Converged, MaxShots, TimeLimit, NothingToShoot, Interrupted, MemoryLimit };
 const char* to_string(StopReason r);
 
-/// Steps until unshot <= converge x emitted, or max shots, or the time limit, or `interrupted`
-/// (if set, polled before every shot) returns true. `on_shot` (if set) is called after every
-/// shot, between steps, where the state may be read. The time limit counts from this call.
+/// Steps until unshot <= converge x emitted, or max shots, or the time limit, or `stop` (if
+/// set, polled before every shot) gives a reason (a signal, the memory limit). `on_shot` (if
+/// set) is called after every shot, between steps, where the state may be read. The time limit
+/// counts from this call.
 StopReason solve(SolverState& s, const VisibilityBackend& vis,
                  const std::function<void(const SolverState&, const ShotRecord&)>& on_shot = {},
-                 const std::function<bool()>& interrupted = {});
+                 const std::function<std::optional<StopReason>()>& stop = {});
 
 }  // namespace rad

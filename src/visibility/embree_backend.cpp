@@ -9,9 +9,11 @@
 #include <limits>
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include "core/denormals.h"
 #include "core/error.h"
+#include "visibility/triangle_test.h"
 
 namespace rad {
 
@@ -19,6 +21,53 @@ namespace {
 
 constexpr float kNegInf = -std::numeric_limits<float>::infinity();
 constexpr size_t kPacket = 16;
+
+// The shared contract: a segment is blocked exactly when segment_hits_triangle (the test brute
+// force and the grid use) says so for some triangle. Embree only proposes candidates: it traces
+// each segment lengthened by `margin` at both ends against triangles grown by `margin` in their
+// plane, so every triangle the shared test hits is among the candidates despite rounding, and
+// an occlusion filter keeps a candidate only if the shared test, on the original segment, hits
+// it. (Without this the backends disagreed on ~1 ray in 1e6 of a solve, all passing within
+// 2e-7 of an edge, enough to subdivide an element differently.)
+struct TraceContext {
+  RTCIntersectContext embree;  // first: Embree hands the filter a pointer to it
+  const Vec3* origin;          // per ray id: the original segment
+  const Vec3* direction;
+  const TriangleRecord* records;
+};
+
+struct GeometryData {
+  uint32_t first_triangle;
+};
+
+void keep_shared_test_hits(const RTCFilterFunctionNArguments* args) {
+  const auto* context = reinterpret_cast<const TraceContext*>(args->context);
+  const auto* geometry = static_cast<const GeometryData*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const unsigned id = RTCRayN_id(args->ray, args->N, i);
+    const uint32_t t = geometry->first_triangle + RTCHitN_primID(args->hit, args->N, i);
+    if (!segment_hits_triangle(context->records[t], context->origin[id], context->direction[id])) {
+      args->valid[i] = 0;
+    }
+  }
+}
+
+// The triangle grown by `margin` in its plane: scaled about its incentre so each edge moves out
+// by `margin` (a sliver, whose inradius is below the margin, at most doubles).
+std::array<Vec3, 3> grown(const std::array<Vec3, 3>& t, double margin) {
+  const DVec3 a(t[0]), b(t[1]), c(t[2]);
+  const double la = glm::length(b - c), lb = glm::length(c - a), lc = glm::length(a - b);
+  const double perimeter = la + lb + lc;
+  const double area = 0.5 * glm::length(glm::cross(b - a, c - a));
+  if (!(perimeter > 0.0)) return t;
+  const DVec3 incentre = (a * la + b * lb + c * lc) / perimeter;
+  const double inradius = 2.0 * area / perimeter;
+  const double scale = inradius > margin ? 1.0 + margin / inradius : 2.0;
+  std::array<Vec3, 3> out;
+  for (int k = 0; k < 3; ++k) out[size_t(k)] = Vec3(incentre + (DVec3(t[size_t(k)]) - incentre) * scale);
+  return out;
+}
 
 // Embree reports errors through a callback. During construction they become rad::Error; during
 // tracing (inside the caller's TBB loops, where throwing is not allowed) they are recorded,
@@ -40,7 +89,12 @@ struct ErrorSink {
 
 class EmbreeBackend final : public VisibilityBackend {
  public:
-  EmbreeBackend(const Hierarchy& h, const VisibilityOptions& options) : packets_(options.packets) {
+  EmbreeBackend(const Hierarchy& h, const VisibilityOptions& options)
+      : packets_(options.packets),
+        records_(make_triangle_records(h.triangles)),
+        // 4x the rounding scale of the coordinates (1e-6 of the diagonal): far above the error of
+        // either test, far below the shadow offset (1e-5) and any feature.
+        margin_(4e-6f * std::max(h.bounds.diagonal(), 1e-30f)) {
     const ScopedFlushDenormals denormals;
     device_ = rtcNewDevice(nullptr);
     if (!device_) {
@@ -50,14 +104,15 @@ class EmbreeBackend final : public VisibilityBackend {
     rtcSetDeviceErrorFunction(device_, &ErrorSink::callback, &errors_);
     scene_ = rtcNewScene(device_);
     check("creating the scene");
-    // ROBUST (watertight edges) although it is slower: without it Embree let through rays that
-    // cross a shared edge of two triangles (a block's vertical edge), which brute force and the
-    // grid see blocked, and a Cornell box vertex came out 1% off the other backends.
+    // ROBUST although it is slower: the fast mode's box tests are not conservative, and an
+    // axis-aligned triangle's box is flat: an 8-wide packet then skipped a block's face that the
+    // same rays traced singly hit (found by rad --cross-check on a generated Cornell box).
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
     rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
     // One geometry per Pure over the flattened world triangles: as fast as one big mesh, and no
     // instances (only one instancing level in this build, and coherent packets on instanced
     // scenes hung on this machine's AVX-512 path).
+    geometry_data_.reserve(h.objects.size());
     for (const SceneObject& o : h.objects) {
       if (o.kind != ObjectKind::Pure || o.triangle_count == 0) continue;
       RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -70,7 +125,7 @@ class EmbreeBackend final : public VisibilityBackend {
                                   3 * sizeof(unsigned), o.triangle_count));
       check("allocating geometry buffers");
       for (uint32_t i = 0; i < o.triangle_count; ++i) {
-        const auto& corners = h.triangles.corners[o.first_triangle + i];
+        const auto corners = grown(h.triangles.corners[o.first_triangle + i], margin_);
         for (int k = 0; k < 3; ++k) {
           vertices[9 * i + 3 * k + 0] = corners[k].x;
           vertices[9 * i + 3 * k + 1] = corners[k].y;
@@ -78,6 +133,9 @@ class EmbreeBackend final : public VisibilityBackend {
           indices[3 * i + k] = 3 * i + k;
         }
       }
+      geometry_data_.push_back({o.first_triangle});
+      rtcSetGeometryUserData(geometry, &geometry_data_.back());
+      rtcSetGeometryOccludedFilterFunction(geometry, keep_shared_test_hits);
       rtcCommitGeometry(geometry);
       rtcAttachGeometry(scene_, geometry);
       rtcReleaseGeometry(geometry);
@@ -145,27 +203,40 @@ class EmbreeBackend final : public VisibilityBackend {
     assert(!"Embree reported an error while tracing");
   }
 
+  // The ray Embree traces for segment (o, d): `margin` longer at both ends.
+  void lengthened(const Vec3& o, const Vec3& d, Vec3& origin, Vec3& direction) const {
+    const float len = glm::length(d);
+    const float extra = len > 0.0f ? margin_ / len : 0.0f;
+    origin = o - d * extra;
+    direction = d * (1.0f + 2.0f * extra);
+  }
+
   // Single rays: tnear = 0, tfar = 1 over the unnormalised direction; mask ~0u (masks are on in
   // this build and mask 0 hits nothing). Occluded ⇔ Embree set tfar to -inf.
   void trace_single(std::span<const Segment> segments, std::span<uint8_t> out) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
+    TraceContext context;
+    rtcInitIntersectContext(&context.embree);
+    context.records = records_.data();
     for (size_t i = 0; i < segments.size(); ++i) {
       const Segment& s = segments[i];
+      context.origin = &s.origin;
+      context.direction = &s.direction;
+      Vec3 o, d;
+      lengthened(s.origin, s.direction, o, d);
       RTCRay ray;
-      ray.org_x = s.origin.x;
-      ray.org_y = s.origin.y;
-      ray.org_z = s.origin.z;
+      ray.org_x = o.x;
+      ray.org_y = o.y;
+      ray.org_z = o.z;
       ray.tnear = 0.0f;
-      ray.dir_x = s.direction.x;
-      ray.dir_y = s.direction.y;
-      ray.dir_z = s.direction.z;
+      ray.dir_x = d.x;
+      ray.dir_y = d.y;
+      ray.dir_z = d.z;
       ray.time = 0.0f;
       ray.tfar = 1.0f;
       ray.mask = ~0u;
       ray.id = 0;
       ray.flags = 0;
-      rtcOccluded1(scene_, &context, &ray);
+      rtcOccluded1(scene_, &context.embree, &ray);
       out[i] = ray.tfar == kNegInf ? 1 : 0;
     }
   }
@@ -184,13 +255,18 @@ class EmbreeBackend final : public VisibilityBackend {
 
   // Rays [0, n) in coherent packets of up to 16 (the solver's vertex → n samples share an
   // origin); a partial last packet is masked by `valid`, a lone last ray goes alone.
-  // set_lane(k, i) writes ray i's lane-k fields that vary (the rest of `rays` is set already).
-  template <typename SetLane, typename Single>
-  void trace_in_packets(size_t n, RTCRay16& rays, SetLane set_lane, Single single,
-                        std::span<uint8_t> out) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  // segment(i) is ray i's original segment; lane k of the packet traces it lengthened.
+  template <typename SegmentOf, typename Single>
+  void trace_in_packets(size_t n, SegmentOf segment, Single single, std::span<uint8_t> out) const {
+    alignas(64) RTCRay16 rays;
+    fill_constant_fields(rays);
+    Vec3 origin[kPacket], direction[kPacket];
+    TraceContext context;
+    rtcInitIntersectContext(&context.embree);
+    context.embree.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    context.origin = origin;
+    context.direction = direction;
+    context.records = records_.data();
     alignas(64) int valid[kPacket];
     for (size_t begin = 0; begin < n; begin += kPacket) {
       const size_t count = std::min(kPacket, n - begin);
@@ -200,48 +276,34 @@ class EmbreeBackend final : public VisibilityBackend {
       }
       for (size_t k = 0; k < kPacket; ++k) {
         valid[k] = k < count ? -1 : 0;
-        set_lane(k, begin + (k < count ? k : 0));
+        const Segment s = segment(begin + (k < count ? k : 0));
+        origin[k] = s.origin;
+        direction[k] = s.direction;
+        Vec3 o, d;
+        lengthened(s.origin, s.direction, o, d);
+        rays.org_x[k] = o.x;
+        rays.org_y[k] = o.y;
+        rays.org_z[k] = o.z;
+        rays.dir_x[k] = d.x;
+        rays.dir_y[k] = d.y;
+        rays.dir_z[k] = d.z;
         rays.tfar[k] = 1.0f;
       }
-      rtcOccluded16(valid, scene_, &context, &rays);
+      rtcOccluded16(valid, scene_, &context.embree, &rays);
       for (size_t k = 0; k < count; ++k) out[begin + k] = rays.tfar[k] == kNegInf ? 1 : 0;
     }
   }
 
   void trace_packets(std::span<const Segment> segments, std::span<uint8_t> out) const {
-    alignas(64) RTCRay16 rays;
-    fill_constant_fields(rays);
     trace_in_packets(
-        segments.size(), rays,
-        [&](size_t k, size_t i) {
-          const Segment& s = segments[i];
-          rays.org_x[k] = s.origin.x;
-          rays.org_y[k] = s.origin.y;
-          rays.org_z[k] = s.origin.z;
-          rays.dir_x[k] = s.direction.x;
-          rays.dir_y[k] = s.direction.y;
-          rays.dir_z[k] = s.direction.z;
-        },
+        segments.size(), [&](size_t i) { return segments[i]; },
         [&](size_t i) { trace_single(segments.subspan(i, 1), out.subspan(i, 1)); }, out);
   }
 
-  // A fan: the origin fills the packet once, each packet then takes only the far ends,
-  // straight from the fan's arrays (no Segment copies to transpose).
+  // A fan: segments straight from the fan's arrays (no Segment copies to transpose).
   void trace_fan_packets(const SegmentFan& fan, std::span<uint8_t> out) const {
-    alignas(64) RTCRay16 rays;
-    fill_constant_fields(rays);
-    for (size_t k = 0; k < kPacket; ++k) {
-      rays.org_x[k] = fan.origin.x;
-      rays.org_y[k] = fan.origin.y;
-      rays.org_z[k] = fan.origin.z;
-    }
     trace_in_packets(
-        fan.size, rays,
-        [&](size_t k, size_t i) {
-          rays.dir_x[k] = fan.x[i] - fan.origin.x;
-          rays.dir_y[k] = fan.y[i] - fan.origin.y;
-          rays.dir_z[k] = fan.z[i] - fan.origin.z;
-        },
+        fan.size, [&](size_t i) { return fan.segment(i); },
         [&](size_t i) {
           const Segment s = fan.segment(i);
           trace_single(std::span<const Segment>(&s, 1), out.subspan(i, 1));
@@ -253,6 +315,9 @@ class EmbreeBackend final : public VisibilityBackend {
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   bool packets_;
+  std::vector<TriangleRecord> records_;     // the shared test's triangles, by triangle id
+  std::vector<GeometryData> geometry_data_;  // per Embree geometry; reserved, never moves
+  float margin_;
 };
 
 }  // namespace

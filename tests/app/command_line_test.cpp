@@ -337,12 +337,43 @@ TEST(CommandLine, SigintAndSigtermWriteThePartialSolutionAndTheCheckpoint) {
   }
 }
 
+// rad --cross-check: the two backends' rays against brute force, the rays the solve cast, the
+// vertices and the radiosity, and "agree" with status 0.
+TEST(CommandLine, CrossCheckReportsEveryLevelAndAgreesOnABundledScene) {
+  const RadRun r = run_rad("--cross-check grid --max-shots 3 " +
+                           (kScenes / "parallel_squares.des").string());
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  for (const char* line : {"rays, embree against brute force", "rays, grid against brute force",
+                           "rays the embree solve cast", "vertices: embree", "radiosity over"}) {
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
+  }
+  EXPECT_NE(r.out.find("\nagree\n"), std::string::npos) << r.out;
+  EXPECT_EQ(run_rad("--cross-check nosuch " + (kScenes / "parallel_squares.des").string()).code, 1);
+}
+
+// A solve that could outgrow --max-memory is refused before any work, with the estimate and the
+// options that change it; nothing is written.
+TEST(CommandLine, SolveThatCouldOutgrowTheMemoryLimitIsRefusedWithTheEstimate) {
+  const fs::path out = fs::temp_directory_path() / "rad_test_memory.ply";
+  fs::remove(out);
+  const RadRun r = run_rad("--max-memory 1M " + (kScenes / "cornell_box.des").string() + " " +
+                           out.string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("this solve could need"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--min-size"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--max-memory"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_EQ(run_rad("--max-memory 12Q " + (kScenes / "cornell_box.des").string() + " " +
+                    out.string()).code, 105) << "a usage error (CLI11's validation status)";
+}
+
 TEST(CommandLine, HelpListsTheOptions) {
   const RadRun r = run_rad("--help");
   EXPECT_EQ(r.code, 0);
   for (const char* opt : {"--backend", "--threads", "--samples", "--threshold", "--converge",
                           "--max-shots", "--time-limit", "--stats-json", "--no-shadows",
-                          "--min-size", "--check", "--checkpoint", "--checkpoint-every"}) {
+                          "--min-size", "--check", "--checkpoint", "--checkpoint-every", "--cross-check",
+                          "--max-memory"}) {
     EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
   }
 }

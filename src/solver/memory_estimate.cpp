@@ -1,0 +1,53 @@
+#include "solver/memory_estimate.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <cmath>
+
+#include "mesh/subdivide.h"
+
+namespace rad {
+
+namespace {
+// Per item, with std::vector's doubling slack (half a capacity on average) and the node of an
+// unordered_map entry (key, value, next pointer, allocator header, bucket).
+constexpr double kSlack = 1.5;
+constexpr double kVertexBytes = sizeof(MeshVertex) * kSlack;
+constexpr double kElementBytes = sizeof(Element) * kSlack;
+constexpr double kMidpointBytes = 48.0;
+}  // namespace
+
+double worst_case_growth_bytes(const SolverState& s) {
+  const float split_edge = 2.0f * s.min_size;
+  return tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, s.mesh.polygons.size()), 0.0,
+      [&](const tbb::blocked_range<size_t>& r, double bytes) {
+        for (size_t p = r.begin(); p < r.end(); ++p) {
+          const PolygonMesh& m = s.mesh.polygons[p];
+          for_each_leaf(m, [&](uint32_t e) {
+            const float longest = longest_edge(m, e);
+            if (!(longest >= split_edge)) return;
+            const double d = std::floor(std::log2(double(longest) / double(split_edge))) + 1.0;
+            const double side = std::exp2(d);                     // edge segments per side
+            const double vertices = (side + 1) * (side + 2) / 2 - 3;  // all new
+            const double elements = (std::exp2(2 * d + 2) - 1) / 3 - 1;
+            bytes += vertices * (kVertexBytes + kMidpointBytes) + elements * kElementBytes;
+          });
+        }
+        return bytes;
+      },
+      [](double a, double b) { return a + b; });
+}
+
+double shot_log_bytes(const SolverState& s, size_t c) {
+  // n samples padded to lanes (10 floats each, 3 more for the ray ends), about 16 n fine
+  // samples (10 floats each, a group index per lane group), the outline.
+  const int m = sample_grid_for(s, s.clusters.extent[c]);
+  const double n = double(m) * m, fine = 16.0 * n;
+  const double outline = double(s.clusters.edge_first[c + 1] - s.clusters.edge_first[c]);
+  return sizeof(ShotSource) + 4.0 * (13.0 * (n + 8) + 10.0 * (fine + 8 * n) + fine / 8) +
+         24.0 * outline;
+}
+
+}  // namespace rad
