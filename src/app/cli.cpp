@@ -66,7 +66,7 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
     app.add_option("--output", c.output,
                    "rad serve: mesh written when the server stops (.ply, .off, .obj, .gltf, .glb)");
   } else {
-    app.add_option("scene", c.scene, "Scene description file")->required();
+    app.add_option("scene", c.scene, "Scene: a description (.des) or a model (.obj, .ply)")->required();
     app.add_option("output", c.output, "Output mesh (.ply, .off, .gfo (COFF), .obj, .gltf or .glb)");
   }
   app.add_flag("--check", c.check, "Parse and validate the scene, print a summary, do not solve");
@@ -138,6 +138,13 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
                  "Seconds between checkpoints (0: after every shot)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  std::vector<std::string> emit;
+  app.add_option("--emit", emit,
+                 "For a model scene (.obj, .ply): materials matching the pattern emit VALUE "
+                 "times their colour, e.g. --emit 'Lamp*=12' (repeatable)")
+      ->expected(1)
+      ->allow_extra_args(false)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   std::string max_memory;
   app.add_option("--max-memory", max_memory,
                  "Memory the solve may use (512M, 8G, ...; default 90% of the machine's): a scene "
@@ -146,6 +153,11 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
   try {
     app.parse(args);
     c.backend = parse_backend_kind(backend);
+    try {
+      for (const std::string& e : emit) c.model.emit.push_back(parse_emit_rule(e));
+    } catch (const Error& e) {
+      throw CLI::ValidationError("--emit", e.what());
+    }
     try {
       if (!max_memory.empty()) c.max_memory = parse_byte_size(max_memory);
     } catch (const Error& e) {

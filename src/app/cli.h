@@ -7,13 +7,15 @@
 
 #include "export/camera.h"
 #include "export/tonemap.h"
+#include "scene/model_scene.h"
 #include "solver/options.h"
 #include "visibility/backend.h"
 
 namespace rad {
 
 struct CommandLine {
-  std::string scene;
+  std::string scene;         // a description (.des) or a model (.obj, .ply)
+  ModelOptions model;        // --emit rules for a model
   std::string output;       // empty with --check
   bool check = false;       // parse, validate, summarise; no solve
   std::optional<BackendKind> cross_check;  // --cross-check B: solve with --backend and B, compare

@@ -10,7 +10,7 @@
 #include <memory>
 
 #include "hierarchy/hierarchy.h"
-#include "scene/parser.h"
+#include "scene/scene_file.h"
 #include "solver/solver.h"
 #include "visibility/agreement.h"
 
@@ -103,7 +103,7 @@ class ComparingBackend final : public VisibilityBackend {
 
 int run_cross_check(const CommandLine& cmd) {
   const BackendKind first = cmd.backend, second = *cmd.cross_check;
-  const Hierarchy h = build_hierarchy(parse_scene_file(cmd.scene));
+  const Hierarchy h = build_hierarchy(read_scene_file(cmd.scene, cmd.model));
   const int threads = cmd.threads > 0 ? cmd.threads : tbb::info::default_concurrency();
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
   std::printf("Cross-check of %s: %s against %s (%zu triangles)\n", cmd.scene.c_str(),

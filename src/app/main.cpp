@@ -8,7 +8,7 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "hierarchy/hierarchy.h"
-#include "scene/parser.h"
+#include "scene/scene_file.h"
 #include "serve/run_serve.h"
 
 namespace {
@@ -16,6 +16,7 @@ namespace {
 rad::ServeConfig serve_config(const rad::CommandLine& cmd) {
   rad::ServeConfig c;
   c.scene = cmd.scene;
+  c.model = cmd.model;
   c.server.host = cmd.host;
   c.server.port = cmd.port;
   c.session.solver = cmd.solver;
@@ -41,7 +42,7 @@ int run(const rad::CommandLine& cmd) {
   if (cmd.serve) return run_serve(serve_config(cmd));
   if (cmd.cross_check) return run_cross_check(cmd);
   if (cmd.check) {
-    std::fputs(summarize(build_hierarchy(parse_scene_file(cmd.scene))).c_str(), stdout);
+    std::fputs(summarize(build_hierarchy(read_scene_file(cmd.scene, cmd.model))).c_str(), stdout);
     return 0;
   }
   run_scene_job(cmd, SceneJob{cmd.scene, cmd.output, cmd.images, cmd.stats_json});

@@ -22,7 +22,7 @@
 #include "export/seams.h"
 #include "hierarchy/hierarchy.h"
 #include "mesh/patch_mesh.h"
-#include "scene/parser.h"
+#include "scene/scene_file.h"
 #include "solver/checkpoint.h"
 #include "solver/memory_estimate.h"
 #include "visibility/backend.h"
@@ -51,7 +51,7 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job) {
   for (const std::string& image : job.images) check_image_extension(image);
 
   say("Reading description file...");
-  const Hierarchy hierarchy = build_hierarchy(parse_scene_file(job.scene));
+  const Hierarchy hierarchy = build_hierarchy(read_scene_file(job.scene, cmd.model));
   times.parse = since(start);
 
   say("Initializing...");

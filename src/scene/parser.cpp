@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "scene/model.h"
 #include "scene/off_reader.h"
 #include "scene/text_file.h"
 #include "scene/tokenizer.h"
@@ -247,6 +248,16 @@ class Parser {
       }
       namespace fs = std::filesystem;
       fs::path full = (fs::path(scene_.path).parent_path() / file.text).lexically_normal();
+      if (is_model_file(full.string())) {
+        // A model's triangles, all of them, with this Pure's material (its own are ignored).
+        Model model = read_model_file(full.string(), file.loc);
+        for (ModelGroup& group : model.groups) {
+          pure.triangles.insert(pure.triangles.end(), group.triangles.begin(), group.triangles.end());
+          pure.triangle_locs.insert(pure.triangle_locs.end(), group.triangle_locs.begin(),
+                                    group.triangle_locs.end());
+        }
+        return;
+      }
       OffTriangles off = read_off_file(full.string(), file.loc);
       pure.triangles = std::move(off.triangles);
       pure.triangle_locs = std::move(off.triangle_locs);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "export/camera.h"
+#include "scene/model_scene.h"
 #include "serve/server.h"
 #include "serve/session.h"
 #include "visibility/backend.h"
@@ -15,6 +16,7 @@ namespace rad {
 
 struct ServeConfig {
   std::string scene;
+  ModelOptions model;  // for a model file as the scene
   ServerOptions server;
   SessionOptions session;
   BackendKind backend = BackendKind::Embree;

@@ -367,13 +367,34 @@ TEST(CommandLine, SolveThatCouldOutgrowTheMemoryLimitIsRefusedWithTheEstimate) {
                     out.string()).code, 105) << "a usage error (CLI11's validation status)";
 }
 
+// A model file is a scene: without an emitting material rad says which option makes one emit;
+// with --emit it solves and writes.
+TEST(CommandLine, SolvesAnObjModelWhoseLampIsNamedByEmit) {
+  const fs::path dir = fs::temp_directory_path() / ("rad_test_obj_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "box.mtl") << "newmtl White\nKd 0.7 0.7 0.7\nnewmtl Lamp\nKd 1 0.9 0.8\n";
+  std::ofstream(dir / "box.obj")
+      << "mtllib box.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0.4 0.9 0.4\nv 0.6 0.9 0.4\n"
+         "v 0.6 0.9 0.6\nv 0.4 0.9 0.6\no floor\nusemtl White\nf 1 4 3 2\no lamp\nusemtl Lamp\n"
+         "f 5 6 7 8\n";
+  const std::string obj = (dir / "box.obj").string(), ply = (dir / "out.ply").string();
+  RadRun r = run_rad("-q --max-shots 3 " + obj + " " + ply);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("--emit"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(ply));
+  r = run_rad("-q --max-shots 3 --emit 'La*=5' " + obj + " " + ply);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(read_file(ply).rfind("ply\n", 0), 0u);
+  fs::remove_all(dir);
+}
+
 TEST(CommandLine, HelpListsTheOptions) {
   const RadRun r = run_rad("--help");
   EXPECT_EQ(r.code, 0);
   for (const char* opt : {"--backend", "--threads", "--samples", "--threshold", "--converge",
                           "--max-shots", "--time-limit", "--stats-json", "--no-shadows",
                           "--min-size", "--check", "--checkpoint", "--checkpoint-every", "--cross-check",
-                          "--max-memory"}) {
+                          "--max-memory", "--emit"}) {
     EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
   }
 }

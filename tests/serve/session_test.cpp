@@ -20,7 +20,7 @@ using namespace std::chrono_literals;
 // Waits (up to `timeout`) for a snapshot that satisfies `ok`; returns it, or null.
 std::shared_ptr<const Snapshot> wait_for(const Session& s,
                                          const std::function<bool(const Snapshot&)>& ok,
-                                         std::chrono::seconds timeout = 60s) {
+                                         std::chrono::seconds timeout = 300s) {
   const auto end = std::chrono::steady_clock::now() + timeout;
   auto snap = s.snapshot();
   while (!ok(*snap)) {

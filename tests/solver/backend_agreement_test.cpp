@@ -59,6 +59,7 @@ struct Solved {
 Solved solve_with(const Hierarchy& h, BackendKind kind, int shots) {
   SolverOptions o;
   o.max_shots = shots;
+  o.max_sample_grid = 4;  // 16 samples a shot: agreement, not accuracy, and brute force is slow
   SolverState s = make_solver_state(h, o);
   solve(s, *make_visibility_backend(kind, h));
   Solved out;
@@ -100,7 +101,7 @@ TEST(BackendAgreement, EveryBundledSceneOnEveryBackend) {
   for (const auto& e : fs::directory_iterator(fs::path(RAD_SOURCE_DIR) / "scenes")) {
     if (e.path().extension() != ".des") continue;
     const Hierarchy h = build_hierarchy(parse_scene_file(e.path().string()));
-    expect_agreement(e.path().filename().string(), h, 6, h.triangles.size() <= 300);
+    expect_agreement(e.path().filename().string(), h, 5, h.triangles.size() <= 300);
     ++scenes;
   }
   EXPECT_GE(scenes, 4);

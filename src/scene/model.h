@@ -1,0 +1,48 @@
+// Triangles and materials read from a model file (Wavefront OBJ, PLY), before they become a
+// scene description (model_scene.h).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/math.h"
+
+namespace rad {
+
+struct ModelMaterial {
+  std::string name;
+  Vec3 reflectance{0.8f};  // diffuse colour (OBJ Kd), times the texture's mean colour
+  Vec3 emission{0.0f};     // OBJ Ke
+  SourceLoc loc;           // where it was defined
+};
+
+/// A named part of the model (OBJ `o`/`g`): triangles, each with its material.
+struct ModelGroup {
+  std::string name;
+  std::vector<std::array<Vec3, 3>> triangles;  // front by the right-hand rule
+  std::vector<uint32_t> material;              // per triangle, into Model::materials
+  std::vector<SourceLoc> triangle_locs;        // the face each triangle came from
+};
+
+struct Model {
+  std::string path;
+  std::vector<ModelMaterial> materials;
+  std::vector<ModelGroup> groups;
+  size_t triangle_count() const {
+    size_t n = 0;
+    for (const ModelGroup& g : groups) n += g.triangles.size();
+    return n;
+  }
+};
+
+/// True when the path's extension names a model format rad reads (.obj, .ply).
+bool is_model_file(const std::string& path);
+
+/// Reads a model of any format rad reads, by extension. Errors about opening it are located at
+/// `requested_at`, errors in its content at the file. Throws rad::Error.
+Model read_model_file(const std::string& path, const SourceLoc& requested_at);
+
+}  // namespace rad

@@ -1,0 +1,97 @@
+#include "scene/model_scene.h"
+
+#include <fnmatch.h>
+
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+
+namespace rad {
+
+EmitRule parse_emit_rule(const std::string& text) {
+  const size_t eq = text.rfind('=');
+  EmitRule r;
+  if (eq == std::string::npos || eq == 0) {
+    throw Error("--emit expects PATTERN=VALUE (e.g. 'Lamp*=12'), got '" + text + "'");
+  }
+  r.pattern = text.substr(0, eq);
+  const char* b = text.data() + eq + 1;
+  const char* e = text.data() + text.size();
+  const auto res = std::from_chars(b, e, r.value);
+  if (res.ec != std::errc() || res.ptr != e || !std::isfinite(r.value) || r.value < 0.0f) {
+    throw Error("--emit '" + text + "': the value must be a number >= 0");
+  }
+  return r;
+}
+
+SceneDescription model_to_scene(const Model& m, const ModelOptions& o) {
+  std::vector<Material> materials;
+  std::vector<size_t> rule_uses(o.emit.size(), 0);
+  for (const ModelMaterial& mm : m.materials) {
+    Material mat{mm.reflectance, mm.emission};
+    if (glm::any(glm::greaterThan(mat.reflectance, Vec3(1.0f)))) {
+      warn(mm.loc, "material '" + mm.name + "' reflects more than it receives (Kd above 1); "
+                   "clamped to 1");
+      mat.reflectance = glm::min(mat.reflectance, Vec3(1.0f));
+    }
+    for (size_t r = 0; r < o.emit.size(); ++r) {
+      if (fnmatch(o.emit[r].pattern.c_str(), mm.name.c_str(), 0) != 0) continue;
+      const float peak = max_component(mm.reflectance);
+      const Vec3 c = peak > 0.0f ? mm.reflectance / peak : Vec3(1.0f);
+      mat.emission = o.emit[r].value * c;
+      ++rule_uses[r];
+    }
+    materials.push_back(mat);
+  }
+  std::string names;
+  for (const ModelMaterial& mm : m.materials) names += (names.empty() ? "" : ", ") + mm.name;
+  for (size_t r = 0; r < o.emit.size(); ++r) {
+    if (rule_uses[r] == 0) {
+      throw Error(SourceLoc{m.path}, "--emit '" + o.emit[r].pattern + "' matches no material (" +
+                                         names + ")");
+    }
+  }
+
+  SceneDescription d;
+  d.path = m.path;
+  d.name = std::filesystem::path(m.path).stem().string();
+  ObjectDescription root;
+  root.name = d.name;
+  root.kind = ObjectKind::Assembly;
+  root.loc = SourceLoc{m.path};
+  d.objects.push_back(root);
+  d.roots.push_back(0);
+  bool emits = false;
+  for (const ModelGroup& g : m.groups) {
+    const int32_t composite = int32_t(d.objects.size());
+    d.objects.push_back({g.name, ObjectKind::Composite, SourceLoc{m.path}, {}, {}, {}, {}});
+    d.objects[0].children.push_back(composite);
+    std::vector<int32_t> pure_of(m.materials.size(), -1);
+    for (size_t t = 0; t < g.triangles.size(); ++t) {
+      const uint32_t k = g.material[t];
+      if (pure_of[k] < 0) {
+        pure_of[k] = int32_t(d.objects.size());
+        ObjectDescription p;
+        p.name = g.name + ": " + m.materials[k].name;
+        p.kind = ObjectKind::Pure;
+        p.loc = m.materials[k].loc;
+        p.material = materials[k];
+        emits |= max_component(p.material.emission) > 0.0f;
+        d.objects[size_t(composite)].children.push_back(pure_of[k]);
+        d.objects.push_back(std::move(p));
+      }
+      ObjectDescription& p = d.objects[size_t(pure_of[k])];
+      p.triangles.push_back(g.triangles[t]);
+      p.triangle_locs.push_back(g.triangle_locs[t]);
+    }
+  }
+  if (!emits) {
+    throw Error(SourceLoc{m.path},
+                "nothing in this model emits light: name the lamps' materials with --emit, "
+                "e.g. --emit '" + (m.materials.empty() ? std::string("*") : m.materials[0].name) +
+                    "=10' (materials: " + names + ")");
+  }
+  return d;
+}
+
+}  // namespace rad

@@ -1,0 +1,33 @@
+// A model file as a scene: its groups and materials become the hierarchy of SPEC §3.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "scene/description.h"
+#include "scene/model.h"
+
+namespace rad {
+
+/// --emit PATTERN=VALUE: materials whose name matches the shell pattern emit VALUE times their
+/// colour scaled to a largest channel of 1 (white when black). Most model files have no
+/// emitting material.
+struct EmitRule {
+  std::string pattern;
+  float value = 0.0f;
+};
+
+/// "Lamp*=12" -> {"Lamp*", 12}. Throws rad::Error for anything else.
+EmitRule parse_emit_rule(const std::string& text);
+
+struct ModelOptions {
+  std::vector<EmitRule> emit;
+};
+
+/// The scene of a model: an Assembly named after the file, one Composite per group, one Pure per
+/// (group, material) with the material's reflectance (clamped to 1 per channel, with one warning
+/// per material) and emission (the rules override the file's). Throws rad::Error naming the
+/// --emit option when nothing emits, or when a rule matches no material.
+SceneDescription model_to_scene(const Model& m, const ModelOptions& o);
+
+}  // namespace rad

@@ -1,0 +1,234 @@
+#include "scene/ply_reader.h"
+
+#include <algorithm>
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <optional>
+#include <sstream>
+
+#include "scene/text_file.h"
+
+namespace rad {
+
+namespace {
+
+enum class Type : uint8_t { I8, U8, I16, U16, I32, U32, F32, F64 };
+
+std::optional<Type> parse_type(const std::string& s) {
+  if (s == "char" || s == "int8") return Type::I8;
+  if (s == "uchar" || s == "uint8") return Type::U8;
+  if (s == "short" || s == "int16") return Type::I16;
+  if (s == "ushort" || s == "uint16") return Type::U16;
+  if (s == "int" || s == "int32") return Type::I32;
+  if (s == "uint" || s == "uint32") return Type::U32;
+  if (s == "float" || s == "float32") return Type::F32;
+  if (s == "double" || s == "float64") return Type::F64;
+  return std::nullopt;
+}
+
+size_t size_of(Type t) {
+  switch (t) {
+    case Type::I8: case Type::U8: return 1;
+    case Type::I16: case Type::U16: return 2;
+    case Type::I32: case Type::U32: case Type::F32: return 4;
+    case Type::F64: return 8;
+  }
+  return 1;
+}
+
+struct Property {
+  std::string name;
+  Type type = Type::F32;
+  bool list = false;
+  Type count_type = Type::U8;
+};
+
+struct Element {
+  std::string name;
+  uint64_t count = 0;
+  std::vector<Property> properties;
+};
+
+enum class Format { Ascii, Little, Big };
+
+// Values of the body, one at a time, from text or binary.
+class Body {
+ public:
+  Body(std::string_view bytes, size_t at, Format f, const std::string& path, int line)
+      : b_(bytes), at_(at), format_(f), path_(path), line_(line) {}
+
+  double value(Type t) {
+    if (format_ == Format::Ascii) return ascii();
+    const size_t n = size_of(t);
+    if (at_ + n > b_.size()) fail("the file ends inside its data");
+    unsigned char raw[8];
+    std::memcpy(raw, b_.data() + at_, n);
+    at_ += n;
+    const bool swap = (format_ == Format::Big) == (std::endian::native == std::endian::little);
+    if (swap) std::reverse(raw, raw + n);
+    switch (t) {
+      case Type::I8: return double(int8_t(raw[0]));
+      case Type::U8: return double(raw[0]);
+      case Type::I16: { int16_t v; std::memcpy(&v, raw, 2); return v; }
+      case Type::U16: { uint16_t v; std::memcpy(&v, raw, 2); return v; }
+      case Type::I32: { int32_t v; std::memcpy(&v, raw, 4); return v; }
+      case Type::U32: { uint32_t v; std::memcpy(&v, raw, 4); return v; }
+      case Type::F32: { float v; std::memcpy(&v, raw, 4); return v; }
+      case Type::F64: { double v; std::memcpy(&v, raw, 8); return v; }
+    }
+    return 0.0;
+  }
+  // Bytes (binary) or characters (ASCII) left: a count may not claim more items than this.
+  size_t left() const { return b_.size() - at_; }
+  [[noreturn]] void fail(const std::string& why) const {
+    throw Error(SourceLoc{path_, format_ == Format::Ascii ? line_ : 0, 0}, why);
+  }
+
+ private:
+  double ascii() {
+    while (at_ < b_.size() && std::isspace(static_cast<unsigned char>(b_[at_]))) {
+      if (b_[at_] == '\n') ++line_;
+      ++at_;
+    }
+    size_t end = at_;
+    while (end < b_.size() && !std::isspace(static_cast<unsigned char>(b_[end]))) ++end;
+    if (end == at_) fail("the file ends inside its data");
+    double v = 0.0;
+    const auto r = std::from_chars(b_.data() + at_, b_.data() + end, v);
+    if (r.ec != std::errc() || r.ptr != b_.data() + end) {
+      fail("'" + std::string(b_.substr(at_, std::min<size_t>(end - at_, 40))) + "' is not a number");
+    }
+    at_ = end;
+    return v;
+  }
+
+  std::string_view b_;
+  size_t at_;
+  Format format_;
+  const std::string& path_;
+  int line_;
+};
+
+}  // namespace
+
+Model parse_ply(std::string_view bytes, const std::string& path) {
+  // Header: text lines up to "end_header".
+  const size_t end = bytes.find("end_header");
+  if (bytes.substr(0, 3) != "ply" || end == std::string_view::npos) {
+    throw Error(SourceLoc{path, 1, 1}, "not a PLY file (no 'ply' ... 'end_header' header)");
+  }
+  size_t body = bytes.find('\n', end);
+  body = body == std::string_view::npos ? bytes.size() : body + 1;
+  std::istringstream header{std::string(bytes.substr(0, end))};
+  std::optional<Format> format;
+  std::vector<Element> elements;
+  std::string line;
+  int number = 0;
+  for (; std::getline(header, line); ++number) {
+    std::istringstream words(line);
+    std::string word;
+    words >> word;
+    const SourceLoc loc{path, number + 1, 1};
+    if (word.empty() || word == "ply" || word == "comment" || word == "obj_info") continue;
+    if (word == "format") {
+      std::string f;
+      words >> f;
+      if (f == "ascii") format = Format::Ascii;
+      else if (f == "binary_little_endian") format = Format::Little;
+      else if (f == "binary_big_endian") format = Format::Big;
+      else throw Error(loc, "unknown PLY format '" + f + "'");
+    } else if (word == "element") {
+      Element e;
+      if (!(words >> e.name >> e.count)) throw Error(loc, "expected 'element NAME COUNT'");
+      elements.push_back(std::move(e));
+    } else if (word == "property") {
+      if (elements.empty()) throw Error(loc, "a property before any element");
+      Property p;
+      std::string t;
+      words >> t;
+      if (t == "list") {
+        std::string ct, vt;
+        words >> ct >> vt >> p.name;
+        const auto c = parse_type(ct), v = parse_type(vt);
+        if (!c || !v || *c == Type::F32 || *c == Type::F64) throw Error(loc, "bad list property types");
+        p.list = true, p.count_type = *c, p.type = *v;
+      } else {
+        const auto v = parse_type(t);
+        if (!v) throw Error(loc, "unknown property type '" + t + "'");
+        p.type = *v;
+        words >> p.name;
+      }
+      elements.back().properties.push_back(std::move(p));
+    } else {
+      throw Error(loc, "unknown header line '" + word + "'");
+    }
+  }
+  if (!format) throw Error(SourceLoc{path, 1, 1}, "no 'format' line");
+
+  Model m;
+  m.path = path;
+  const std::string stem = std::filesystem::path(path).stem().string();
+  m.materials.push_back({stem, Vec3(0.8f), Vec3(0.0f), SourceLoc{path}});
+  ModelGroup g;
+  g.name = stem;
+  std::vector<Vec3> vertices;
+  Body in(bytes, body, *format, path, number + 1);
+  for (const Element& e : elements) {
+    // Each item takes at least one byte (binary) or two characters (ASCII) per property.
+    const size_t least = std::max<size_t>(e.properties.size(), 1) * (*format == Format::Ascii ? 2 : 1);
+    if (e.count > in.left() / least) {
+      in.fail("element '" + e.name + "' claims " + std::to_string(e.count) + " items, more than the file holds");
+    }
+    const bool is_vertex = e.name == "vertex", is_face = e.name == "face";
+    for (uint64_t i = 0; i < e.count; ++i) {
+      Vec3 p(0.0f);
+      int found = 0;
+      for (const Property& prop : e.properties) {
+        if (!prop.list) {
+          const double v = in.value(prop.type);
+          if (is_vertex && (prop.name == "x" || prop.name == "y" || prop.name == "z")) {
+            if (!std::isfinite(v) || std::abs(v) > 3e38) in.fail("vertex " + std::to_string(i) + " is not finite");
+            p[prop.name[0] - 'x'] = float(v);
+            ++found;
+          }
+          continue;
+        }
+        const double count = in.value(prop.count_type);
+        if (!(count >= 0) || count > double(in.left())) in.fail("a list longer than the file");
+        const size_t n = size_t(count);
+        const bool indices = is_face && (prop.name == "vertex_indices" || prop.name == "vertex_index");
+        std::vector<uint32_t> face;
+        for (size_t k = 0; k < n; ++k) {
+          const double v = in.value(prop.type);
+          if (!indices) continue;
+          if (!(v >= 0) || v >= double(vertices.size()) || v != std::floor(v)) {
+            in.fail("face " + std::to_string(i) + " names vertex " + std::to_string(v) + " of " +
+                    std::to_string(vertices.size()));
+          }
+          face.push_back(uint32_t(v));
+        }
+        for (size_t k = 2; k < face.size(); ++k) {
+          g.triangles.push_back({vertices[face[0]], vertices[face[k - 1]], vertices[face[k]]});
+          g.material.push_back(0);
+          g.triangle_locs.push_back(SourceLoc{path});
+        }
+      }
+      if (is_vertex) {
+        if (found != 3) in.fail("the vertex element needs properties x, y and z");
+        vertices.push_back(p);
+      }
+    }
+  }
+  if (g.triangles.empty()) throw Error(SourceLoc{path}, "has no faces");
+  m.groups.push_back(std::move(g));
+  return m;
+}
+
+Model read_ply_file(const std::string& path, const SourceLoc& requested_at) {
+  return parse_ply(read_text_file(path, requested_at), path);
+}
+
+}  // namespace rad
