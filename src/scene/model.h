@@ -1,4 +1,4 @@
-// Triangles and materials read from a model file (Wavefront OBJ, PLY), before they become a
+// Triangles and materials read from a model file (Wavefront OBJ, PLY, glTF), before they become a
 // scene description (model_scene.h).
 #pragma once
 
@@ -38,7 +38,7 @@ struct Model {
   }
 };
 
-/// True when the path's extension names a model format rad reads (.obj, .ply).
+/// True when the path's extension names a model format rad reads (.obj, .ply, .gltf, .glb).
 bool is_model_file(const std::string& path);
 
 /// Reads a model of any format rad reads, by extension. Errors about opening it are located at

@@ -13,4 +13,7 @@ namespace rad {
 /// values taken as sRGB), or nothing when it cannot be read. Images above 64 Mpixel are refused.
 std::optional<Vec3> mean_texture_colour(const std::string& path);
 
+/// The same for an encoded image in memory (a glTF buffer's PNG or JPEG).
+std::optional<Vec3> mean_texture_colour(const unsigned char* bytes, size_t size);
+
 }  // namespace rad

@@ -10,8 +10,10 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include "hierarchy/hierarchy.h"
+#include "scene/gltf_reader.h"
 #include "scene/model.h"
 #include "scene/model_scene.h"
 #include "scene/obj_reader.h"
@@ -192,6 +194,97 @@ TEST_F(ModelFiles, ADescriptionFileMayNameAModelAsAPuresGeometry) {
   const Hierarchy h = build_hierarchy(parse_scene_file(des));
   EXPECT_EQ(h.triangles.size(), 6u);
   EXPECT_EQ(h.objects[0].material.emission, Vec3(1.0f));
+}
+
+}  // namespace
+}  // namespace rad
+
+namespace rad {
+namespace {
+
+std::string base64(const std::string& in) {
+  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (size_t i = 0; i < in.size(); i += 3) {
+    uint32_t v = uint32_t(uint8_t(in[i])) << 16;
+    if (i + 1 < in.size()) v |= uint32_t(uint8_t(in[i + 1])) << 8;
+    if (i + 2 < in.size()) v |= uint32_t(uint8_t(in[i + 2]));
+    out += k[(v >> 18) & 63];
+    out += k[(v >> 12) & 63];
+    out += i + 1 < in.size() ? k[(v >> 6) & 63] : '=';
+    out += i + 2 < in.size() ? k[v & 63] : '=';
+  }
+  return out;
+}
+
+// One unit quad mesh placed by three nodes: moved, moved under a parent, mirrored.
+std::string quad_gltf(const std::string& extra_node = "") {
+  std::string buf;
+  const float p[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  buf.append(reinterpret_cast<const char*>(p), sizeof p);
+  const uint16_t idx[6] = {0, 1, 2, 0, 2, 3};
+  buf.append(reinterpret_cast<const char*>(idx), sizeof idx);
+  return R"({"asset": {"version": "2.0"}, "scene": 0,
+    "scenes": [{"nodes": [0, 1, 3)" + extra_node + R"(]}],
+    "nodes": [{"name": "near", "mesh": 0, "translation": [0, 0, 1]},
+              {"name": "group", "translation": [10, 0, 0], "children": [2]},
+              {"name": "far", "mesh": 0, "scale": [2, 2, 2]},
+              {"name": "mirror", "mesh": 0, "scale": [-1, 1, 1]}],
+    "meshes": [{"name": "quad", "primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}],
+    "materials": [{"name": "Lamp", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.25, 1, 1]},
+                   "emissiveFactor": [1, 0.5, 0.25],
+                   "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 8}}}],
+    "extensionsUsed": ["KHR_materials_emissive_strength"],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                   "min": [0, 0, 0], "max": [1, 1, 0]},
+                  {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}],
+    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                    {"buffer": 0, "byteOffset": 48, "byteLength": 12}],
+    "buffers": [{"byteLength": 60, "uri": "data:application/octet-stream;base64,)" +
+         base64(buf) + R"("}]})";
+}
+
+TEST_F(ModelFiles, GltfNodeTransformsComposeAndInstancesAreFlattened) {
+  const Model m = parse_gltf(quad_gltf(), "quad.gltf", "");
+  ASSERT_EQ(m.groups.size(), 3u) << "one group per placement";
+  std::map<std::string, const ModelGroup*> by_name;
+  for (const ModelGroup& g : m.groups) by_name[g.name] = &g;
+  ASSERT_TRUE(by_name.count("near") && by_name.count("far") && by_name.count("mirror"));
+  EXPECT_EQ(by_name["near"]->triangles[0][1], Vec3(1, 0, 1));
+  EXPECT_EQ(by_name["far"]->triangles[0][1], Vec3(12, 0, 0)) << "parent translation after scale";
+  // Mirrored: the corners are swapped so the front stays the front.
+  const auto& t = by_name["mirror"]->triangles[0];
+  const Vec3 n = glm::cross(t[1] - t[0], t[2] - t[0]);
+  EXPECT_GT(n.z, 0.0f);
+  ASSERT_EQ(m.materials.size(), 1u);
+  EXPECT_EQ(m.materials[0].reflectance, Vec3(0.5f, 0.25f, 1.0f));
+  EXPECT_EQ(m.materials[0].emission, Vec3(8.0f, 4.0f, 2.0f)) << "factor x emissive strength";
+}
+
+TEST_F(ModelFiles, BadGltfFilesEndInOneError) {
+  std::string cyclic = quad_gltf();
+  cyclic.replace(cyclic.find("\"children\": [2]"), 15, "\"children\": [1]");  // node 1 is its own child
+  std::string doubling = quad_gltf();  // node 1 lists itself twice: 2^depth placements
+  doubling.replace(doubling.find("\"children\": [2]"), 15, "\"children\": [1, 1]");
+  std::string past = quad_gltf();
+  past.replace(past.find("\"count\": 6"), 10, "\"count\": 9");
+  for (const std::string& bad : {std::string("{"), std::string("glTF\x02\0\0\0", 8), cyclic, doubling, past,
+                                 std::string(R"({"asset": {"version": "2.0"}, "scenes": []})")}) {
+    EXPECT_THROW(parse_gltf(bad, "bad.gltf", ""), Error) << bad.substr(0, 40);
+  }
+  // External buffers are refused without a folder, and read only as regular files with one.
+  std::string external = quad_gltf();
+  const size_t uri = external.find("data:application");
+  external.replace(uri, external.find('"', uri) - uri, "/dev/zero");
+  EXPECT_THROW(parse_gltf(external, "ext.gltf", ""), Error);
+  EXPECT_THROW(parse_gltf(external, "ext.gltf", dir.string()), Error);
+}
+
+TEST_F(ModelFiles, AGltfSceneSolvesAsAModel) {
+  const std::string path = write("quad.gltf", quad_gltf());
+  const Hierarchy h = build_hierarchy(read_scene_file(path));
+  EXPECT_EQ(h.triangles.size(), 6u);
+  EXPECT_EQ(h.objects[0].name, "quad");
 }
 
 }  // namespace

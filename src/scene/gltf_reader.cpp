@@ -1,0 +1,291 @@
+#include "scene/gltf_reader.h"
+
+// The implementation is Debian's libtinygltf (it decodes images with its own stb_image; rad
+// replaces that loader below, so every image is only ever reduced to its mean colour).
+#include <tiny_gltf.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <map>
+
+#include "scene/text_file.h"
+#include "scene/texture_mean.h"
+
+namespace rad {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Node trees may repeat a mesh; a hostile one could place it 2^depth times.
+constexpr size_t kMaxTriangles = 50'000'000;
+constexpr int kMaxDepth = 256;
+constexpr size_t kMaxPlacements = 10'000'000;  // node visits: a node may list one child twice
+
+struct Context {
+  std::string folder;                // external files only from here; "" refuses them
+  std::map<int, Vec3> texture_mean;  // image index -> mean linear colour
+};
+
+bool load_image(tinygltf::Image* image, const int index, std::string*, std::string* warn, int,
+                int, const unsigned char* bytes, int size, void* user) {
+  auto* c = static_cast<Context*>(user);
+  if (size > 0) {
+    if (const std::optional<Vec3> m = mean_texture_colour(bytes, size_t(size))) {
+      c->texture_mean[index] = *m;
+    } else if (warn) {
+      *warn += "image " + std::to_string(index) + " cannot be decoded; its material uses its factor\n";
+    }
+  }
+  image->width = image->height = 1;
+  image->component = 3;
+  image->image.clear();
+  return true;  // an unreadable texture is not worth refusing the scene
+}
+
+bool file_exists(const std::string& p, void* user) {
+  std::error_code ec;
+  return !static_cast<Context*>(user)->folder.empty() && fs::is_regular_file(p, ec);
+}
+std::string expand_path(const std::string& p, void*) { return p; }
+bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& p,
+                     void* user) {
+  if (static_cast<Context*>(user)->folder.empty()) {
+    if (err) *err += "external file " + p + " refused\n";
+    return false;
+  }
+  try {
+    const std::string s = read_text_file(p, SourceLoc{p});
+    out->assign(s.begin(), s.end());
+    return true;
+  } catch (const Error& e) {
+    if (err) *err += e.message() + "\n";
+    return false;
+  }
+}
+bool write_whole_file(std::string*, const std::string&, const std::vector<unsigned char>&, void*) {
+  return false;
+}
+
+[[noreturn]] void fail(const std::string& path, const std::string& why) {
+  throw Error(SourceLoc{path}, why);
+}
+
+// An accessor's elements, checked to lie inside their buffer.
+struct View {
+  const unsigned char* data = nullptr;
+  size_t stride = 0, count = 0;
+  int component = 0;  // TINYGLTF_COMPONENT_TYPE_*
+  int components = 0;
+};
+
+View view(const tinygltf::Model& m, int index, const std::string& path, const char* what) {
+  if (index < 0 || size_t(index) >= m.accessors.size()) fail(path, std::string(what) + ": no such accessor");
+  const tinygltf::Accessor& a = m.accessors[size_t(index)];
+  if (a.sparse.isSparse) fail(path, std::string(what) + ": sparse accessors are not read");
+  if (a.bufferView < 0 || size_t(a.bufferView) >= m.bufferViews.size()) fail(path, std::string(what) + ": no buffer view");
+  const tinygltf::BufferView& bv = m.bufferViews[size_t(a.bufferView)];
+  if (bv.buffer < 0 || size_t(bv.buffer) >= m.buffers.size()) fail(path, std::string(what) + ": no buffer");
+  const std::vector<unsigned char>& buffer = m.buffers[size_t(bv.buffer)].data;
+  const int csize = tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType));
+  const int ncomp = tinygltf::GetNumComponentsInType(uint32_t(a.type));
+  if (csize <= 0 || ncomp <= 0) fail(path, std::string(what) + ": unknown component type");
+  View v;
+  v.component = a.componentType;
+  v.components = ncomp;
+  v.count = a.count;
+  const size_t element = size_t(csize) * size_t(ncomp);
+  v.stride = bv.byteStride ? bv.byteStride : element;
+  if (v.stride < element) fail(path, std::string(what) + ": byteStride below the element size");
+  if (bv.byteOffset > buffer.size() || bv.byteLength > buffer.size() - bv.byteOffset ||
+      a.byteOffset > bv.byteLength) {
+    fail(path, std::string(what) + ": buffer view outside its buffer");
+  }
+  const size_t room = bv.byteLength - a.byteOffset;
+  if (v.count > 0 && (room < element || (v.count - 1) > (room - element) / v.stride)) {
+    fail(path, std::string(what) + ": accessor runs past its buffer view");
+  }
+  v.data = buffer.data() + bv.byteOffset + a.byteOffset;
+  return v;
+}
+
+double component(const View& v, size_t i, int k) {
+  const unsigned char* p = v.data + i * v.stride;
+  switch (v.component) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p + 4 * k, 4); return f; }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[k];
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t u; std::memcpy(&u, p + 2 * k, 2); return u; }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t u; std::memcpy(&u, p + 4 * k, 4); return u; }
+    default: return std::nan("");
+  }
+}
+
+glm::dmat4 local_transform(const tinygltf::Node& n) {
+  if (n.matrix.size() == 16) return glm::make_mat4(n.matrix.data());
+  glm::dmat4 m(1.0);
+  if (n.translation.size() == 3) m = glm::translate(m, glm::dvec3(n.translation[0], n.translation[1], n.translation[2]));
+  if (n.rotation.size() == 4) {
+    m *= glm::mat4_cast(glm::normalize(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2])));
+  }
+  if (n.scale.size() == 3) m = glm::scale(m, glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));
+  return m;
+}
+
+ModelMaterial material_of(const tinygltf::Material& g, const Context& c,
+                          const tinygltf::Model& m, const std::string& path) {
+  ModelMaterial mat;
+  mat.name = g.name.empty() ? "material" : g.name;
+  mat.loc = SourceLoc{path};
+  const auto& f = g.pbrMetallicRoughness.baseColorFactor;
+  if (f.size() >= 3) mat.reflectance = Vec3(float(f[0]), float(f[1]), float(f[2]));
+  const int t = g.pbrMetallicRoughness.baseColorTexture.index;
+  if (t >= 0 && size_t(t) < m.textures.size()) {
+    const auto it = c.texture_mean.find(m.textures[size_t(t)].source);
+    if (it != c.texture_mean.end()) mat.reflectance *= it->second;
+  }
+  double strength = 1.0;
+  const auto ext = g.extensions.find("KHR_materials_emissive_strength");
+  if (ext != g.extensions.end() && ext->second.Has("emissiveStrength")) {
+    strength = ext->second.Get("emissiveStrength").GetNumberAsDouble();
+  }
+  if (g.emissiveFactor.size() == 3) {
+    mat.emission = Vec3(float(g.emissiveFactor[0] * strength), float(g.emissiveFactor[1] * strength),
+                        float(g.emissiveFactor[2] * strength));
+  }
+  for (int k = 0; k < 3; ++k) {
+    if (!(mat.reflectance[k] >= 0.0f && std::isfinite(mat.reflectance[k])) ||
+        !(mat.emission[k] >= 0.0f && std::isfinite(mat.emission[k]))) {
+      fail(path, "material '" + mat.name + "' has a negative or non-finite colour or emission");
+    }
+  }
+  return mat;
+}
+
+}  // namespace
+
+Model parse_gltf(std::string_view bytes, const std::string& path, const std::string& folder) {
+  Context c{folder, {}};
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(load_image, &c);
+  loader.SetFsCallbacks({file_exists, expand_path, read_whole_file, write_whole_file, &c});
+  tinygltf::Model g;
+  std::string err, warn;
+  const bool binary = bytes.size() >= 4 && bytes.substr(0, 4) == "glTF";
+  if (bytes.size() > 0xffffffffu) fail(path, "larger than 4 GiB");
+  const bool ok =
+      binary ? loader.LoadBinaryFromMemory(&g, &err, &warn,
+                                           reinterpret_cast<const unsigned char*>(bytes.data()),
+                                           unsigned(bytes.size()), folder)
+             : loader.LoadASCIIFromString(&g, &err, &warn, bytes.data(), unsigned(bytes.size()), folder);
+  if (!ok) fail(path, "not a readable glTF file: " + err.substr(0, err.find('\n')));
+  if (!warn.empty()) rad::warn(SourceLoc{path}, warn.substr(0, warn.find('\n')));
+
+  Model m;
+  m.path = path;
+  for (const tinygltf::Material& mat : g.materials) m.materials.push_back(material_of(mat, c, g, path));
+  const uint32_t fallback = uint32_t(m.materials.size());
+  bool fallback_used = false, skipped = false;
+  size_t total = 0;
+
+  const int scene = g.defaultScene >= 0 ? g.defaultScene : 0;
+  if (g.scenes.empty() || size_t(scene) >= g.scenes.size()) fail(path, "has no scene");
+  struct Item {
+    int node, depth;
+    glm::dmat4 parent;
+  };
+  std::vector<Item> stack;
+  for (int root : g.scenes[size_t(scene)].nodes) stack.push_back({root, 0, glm::dmat4(1.0)});
+  size_t visits = 0;
+  while (!stack.empty()) {
+    const Item it = stack.back();
+    stack.pop_back();
+    if (++visits > kMaxPlacements) fail(path, "more than 10 million node placements (a cycle?)");
+    if (it.node < 0 || size_t(it.node) >= g.nodes.size()) fail(path, "a scene names no such node");
+    if (it.depth > kMaxDepth) fail(path, "nodes nested more than 256 deep (a cycle?)");
+    const tinygltf::Node& n = g.nodes[size_t(it.node)];
+    const glm::dmat4 world = it.parent * local_transform(n);
+    for (int child : n.children) stack.push_back({child, it.depth + 1, world});
+    if (n.mesh < 0) continue;
+    if (size_t(n.mesh) >= g.meshes.size()) fail(path, "a node names no such mesh");
+    const tinygltf::Mesh& mesh = g.meshes[size_t(n.mesh)];
+    ModelGroup group;
+    group.name = !n.name.empty() ? n.name : !mesh.name.empty() ? mesh.name : "node " + std::to_string(it.node);
+    const bool mirrored = glm::determinant(world) < 0.0;
+    for (const tinygltf::Primitive& p : mesh.primitives) {
+      const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+      if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+          mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+        skipped = true;
+        continue;
+      }
+      const auto pos = p.attributes.find("POSITION");
+      if (pos == p.attributes.end()) fail(path, "a primitive of mesh '" + mesh.name + "' has no POSITION");
+      const View positions = view(g, pos->second, path, "POSITION");
+      if (positions.components != 3 || positions.component != TINYGLTF_COMPONENT_TYPE_FLOAT) {
+        fail(path, "POSITION must be float VEC3");
+      }
+      std::vector<uint32_t> index;
+      if (p.indices >= 0) {
+        const View iv = view(g, p.indices, path, "indices");
+        if (iv.components != 1 || iv.component == TINYGLTF_COMPONENT_TYPE_FLOAT) fail(path, "indices must be unsigned integers");
+        index.reserve(iv.count);
+        for (size_t i = 0; i < iv.count; ++i) {
+          const double k = component(iv, i, 0);
+          if (!(k < double(positions.count))) fail(path, "an index past the vertices of mesh '" + mesh.name + "'");
+          index.push_back(uint32_t(k));
+        }
+      } else {
+        for (size_t i = 0; i < positions.count; ++i) index.push_back(uint32_t(i));
+      }
+      auto corner = [&](uint32_t i) {
+        const glm::dvec4 q = world * glm::dvec4(component(positions, i, 0), component(positions, i, 1),
+                                                component(positions, i, 2), 1.0);
+        return Vec3(q);
+      };
+      const bool known = p.material >= 0 && size_t(p.material) < m.materials.size();
+      fallback_used |= !known;
+      const uint32_t material = known ? uint32_t(p.material) : fallback;
+      auto emit = [&](uint32_t a, uint32_t b, uint32_t d) {
+        std::array<Vec3, 3> t{corner(a), corner(b), corner(d)};
+        if (mirrored) std::swap(t[1], t[2]);  // a mirroring transform turns the front over
+        for (const Vec3& v : t) {
+          if (!glm::all(glm::lessThan(glm::abs(v), Vec3(3e38f)))) fail(path, "a vertex is not finite after its transform");
+        }
+        group.triangles.push_back(t);
+        group.material.push_back(material);
+        group.triangle_locs.push_back(SourceLoc{path});
+      };
+      const size_t n3 = index.size();
+      if (mode == TINYGLTF_MODE_TRIANGLES) {
+        for (size_t i = 0; i + 2 < n3; i += 3) emit(index[i], index[i + 1], index[i + 2]);
+      } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+        for (size_t i = 0; i + 2 < n3; ++i) {
+          if (i % 2 == 0) emit(index[i], index[i + 1], index[i + 2]);
+          else emit(index[i + 1], index[i], index[i + 2]);
+        }
+      } else {
+        for (size_t i = 1; i + 1 < n3; ++i) emit(index[0], index[i], index[i + 1]);
+      }
+      if ((total += group.triangles.size()) > kMaxTriangles) {
+        fail(path, "more than 50 million triangles once its instances are placed");
+      }
+    }
+    if (!group.triangles.empty()) m.groups.push_back(std::move(group));
+  }
+  if (skipped) rad::warn(SourceLoc{path}, "points and lines skipped: only triangles reflect light");
+  if (fallback_used) m.materials.push_back({"default", Vec3(0.8f), Vec3(0.0f), SourceLoc{path}});
+  if (m.groups.empty()) fail(path, "has no triangles");
+  return m;
+}
+
+Model read_gltf_file(const std::string& path, const SourceLoc& requested_at) {
+  const std::string bytes = read_text_file(path, requested_at);
+  const std::string folder = fs::path(path).parent_path().string();
+  return parse_gltf(bytes, path, folder.empty() ? "." : folder);
+}
+
+}  // namespace rad
