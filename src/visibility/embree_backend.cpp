@@ -3,6 +3,7 @@
 #include <embree3/rtcore.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cassert>
 #include <cstdio>
@@ -34,17 +35,41 @@ struct TraceContext {
   const Vec3* origin;          // per ray id: the original segment
   const Vec3* direction;
   const TriangleRecord* records;
+  float clearance;  // margin + a distance far above either test's rounding (see below)
 };
 
 struct GeometryData {
   uint32_t first_triangle;
+  float longest_edge;  // of the grown triangles: bounds their altitudes from below
 };
+
+// A hit the shared test is certain to confirm needs no test (and no read of its record, the
+// filter's cost): Embree's point lies `clearance` inside the grown triangle (so clearance -
+// margin inside the original) and from both ends of the segment, and the ray meets the plane
+// at more than 11.5 degrees (below that both tests' errors grow as 1 / cos). Distances from
+// Embree's own data: the altitude to edge k is |Ng| / |edge k| >= |Ng| / longest_edge.
+bool surely_hit(const RTCFilterFunctionNArguments* args, unsigned i, float clearance,
+                float longest_edge) {
+  RTCHitN* h = args->hit;
+  RTCRayN* r = args->ray;
+  const unsigned n = args->N;
+  const float u = RTCHitN_u(h, n, i), v = RTCHitN_v(h, n, i), w = 1.0f - u - v;
+  const Vec3 ng(RTCHitN_Ng_x(h, n, i), RTCHitN_Ng_y(h, n, i), RTCHitN_Ng_z(h, n, i));
+  const Vec3 d(RTCRayN_dir_x(r, n, i), RTCRayN_dir_y(r, n, i), RTCRayN_dir_z(r, n, i));
+  const float t = RTCRayN_tfar(r, n, i);
+  const float ng2 = glm::dot(ng, ng), d2 = glm::dot(d, d), nd = glm::dot(ng, d);
+  const float edge = clearance * longest_edge;
+  const float lo = std::min({u, v, w});
+  return nd * nd >= 0.04f * ng2 * d2 && lo > 0.0f && lo * lo * ng2 >= edge * edge &&
+         t * t * d2 >= clearance * clearance && (1.0f - t) * (1.0f - t) * d2 >= clearance * clearance;
+}
 
 void keep_shared_test_hits(const RTCFilterFunctionNArguments* args) {
   const auto* context = reinterpret_cast<const TraceContext*>(args->context);
   const auto* geometry = static_cast<const GeometryData*>(args->geometryUserPtr);
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
+    if (surely_hit(args, i, context->clearance, geometry->longest_edge)) continue;
     const unsigned id = RTCRayN_id(args->ray, args->N, i);
     const uint32_t t = geometry->first_triangle + RTCHitN_primID(args->hit, args->N, i);
     if (!segment_hits_triangle(context->records[t], context->origin[id], context->direction[id])) {
@@ -92,9 +117,11 @@ class EmbreeBackend final : public VisibilityBackend {
   EmbreeBackend(const Hierarchy& h, const VisibilityOptions& options)
       : packets_(options.packets),
         records_(make_triangle_records(h.triangles)),
-        // 4x the rounding scale of the coordinates (1e-6 of the diagonal): far above the error of
-        // either test, far below the shadow offset (1e-5) and any feature.
-        margin_(4e-6f * std::max(h.bounds.diagonal(), 1e-30f)) {
+        // 4x the rounding scale of the coordinates (1e-6 of the diagonal, or of the largest
+        // coordinate for a scene far from the origin): far above the error of either test, far
+        // below the shadow offset (1e-5) and any feature.
+        margin_(4e-6f * std::max({h.bounds.diagonal(), max_component(glm::abs(h.bounds.lo)),
+                                  max_component(glm::abs(h.bounds.hi)), 1e-30f})) {
     const ScopedFlushDenormals denormals;
     device_ = rtcNewDevice(nullptr);
     if (!device_) {
@@ -124,8 +151,10 @@ class EmbreeBackend final : public VisibilityBackend {
           rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                   3 * sizeof(unsigned), o.triangle_count));
       check("allocating geometry buffers");
+      float longest = 0.0f;
       for (uint32_t i = 0; i < o.triangle_count; ++i) {
         const auto corners = grown(h.triangles.corners[o.first_triangle + i], margin_);
+        for (int k = 0; k < 3; ++k) longest = std::max(longest, glm::length(corners[size_t(k)] - corners[size_t((k + 1) % 3)]));
         for (int k = 0; k < 3; ++k) {
           vertices[9 * i + 3 * k + 0] = corners[k].x;
           vertices[9 * i + 3 * k + 1] = corners[k].y;
@@ -133,7 +162,7 @@ class EmbreeBackend final : public VisibilityBackend {
           indices[3 * i + k] = 3 * i + k;
         }
       }
-      geometry_data_.push_back({o.first_triangle});
+      geometry_data_.push_back({o.first_triangle, longest});
       rtcSetGeometryUserData(geometry, &geometry_data_.back());
       rtcSetGeometryOccludedFilterFunction(geometry, keep_shared_test_hits);
       rtcCommitGeometry(geometry);
@@ -203,6 +232,10 @@ class EmbreeBackend final : public VisibilityBackend {
     assert(!"Embree reported an error while tracing");
   }
 
+  // How far inside a grown triangle, and from the lengthened ray's ends, a hit needs no test:
+  // the margin plus 4 margins (40x the coordinates' rounding scale).
+  float clearance() const { return 5.0f * margin_; }
+
   // The ray Embree traces for segment (o, d): `margin` longer at both ends.
   void lengthened(const Vec3& o, const Vec3& d, Vec3& origin, Vec3& direction) const {
     const float len = glm::length(d);
@@ -217,6 +250,7 @@ class EmbreeBackend final : public VisibilityBackend {
     TraceContext context;
     rtcInitIntersectContext(&context.embree);
     context.records = records_.data();
+    context.clearance = clearance();
     for (size_t i = 0; i < segments.size(); ++i) {
       const Segment& s = segments[i];
       context.origin = &s.origin;
@@ -267,6 +301,7 @@ class EmbreeBackend final : public VisibilityBackend {
     context.origin = origin;
     context.direction = direction;
     context.records = records_.data();
+    context.clearance = clearance();
     alignas(64) int valid[kPacket];
     for (size_t begin = 0; begin < n; begin += kPacket) {
       const size_t count = std::min(kPacket, n - begin);
