@@ -145,7 +145,8 @@ TEST_F(LoadTest, MalformedOversizedSlowAndVanishingClientsLeaveTheSolverRunning)
   {  // Not HTTP at all.
     Raw r(port);
     ASSERT_TRUE(r.connected());
-    r.send_all(std::string("\x00\x01\x02 garbage \xff\xfe\r\n\r\n", 20));
+    static constexpr char kGarbage[] = "\x00\x01\x02 garbage \xff\xfe\r\n\r\n";
+    r.send_all(std::string(kGarbage, sizeof kGarbage - 1));
     const std::string a = r.receive();
     EXPECT_TRUE(a.empty() || (status_code(a) >= 400 && status_code(a) < 500)) << a.substr(0, 80);
   }
