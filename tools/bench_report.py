@@ -148,6 +148,25 @@ def tessellation(out):
               f"{100 * (mean / 2 - 1):+.3f}% (worst face {100 * worst:.2f}%; target within 0.5%)")
 
 
+def agreement(out):
+    """The --cross-check reports: rays of the solve answered differently, vertices, radiosity."""
+    files = sorted(glob.glob(os.path.join(out, "agreement_*.txt")))
+    if not files:
+        return
+    print("\nBackend agreement (rad --cross-check: every ray the embree solve casts also asked of "
+          "the other backend)")
+    for path in files:
+        lines = open(path).read().splitlines()
+        keep = [l.strip() for l in lines if l.startswith("Cross-check") or
+                l.strip().startswith(("rays the", "solves:", "vertices:", "radiosity over"))]
+        verdict = lines[-1].strip() if lines else "no output"
+        for l in keep:
+            print("  " + l)
+        print("  => " + verdict)
+    print("  target (issue 13): same vertices, radiosity within 1e-5 of the largest, no ray "
+          "beyond rounding distance")
+
+
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else "out/bench"
     m = machine(os.path.join(out, "machine.txt"))
@@ -399,6 +418,7 @@ def main():
           f"{reached(best_reflecting)}")
     print("  for scale (issue 6): Blender 3.4 Cycles baking the box: 23.5 s for 3.9%, 172 s for 1.8%")
     tessellation(out)
+    agreement(out)
 
 
 if __name__ == "__main__":
