@@ -5,6 +5,7 @@
 #define TINYOBJLOADER_IMPLEMENTATION
 #include <tiny_obj_loader.h>
 
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -29,6 +30,33 @@ std::string first_line(const std::string& s) {
   return line;
 }
 
+// The statements rad uses; tinyobjloader parses every other one too (skin weights, lines, points,
+// curves), and fuzzing found undefined behaviour there: a `vw` joint id beyond int. They carry
+// nothing a radiosity solve reads, so they are dropped before parsing.
+std::string statements_rad_reads(std::string_view obj) {
+  std::string out;
+  out.reserve(obj.size());
+  for (size_t at = 0; at < obj.size();) {
+    size_t end = obj.find('\n', at);
+    if (end == std::string_view::npos) end = obj.size();
+    const std::string_view line = obj.substr(at, end - at);
+    size_t k = 0;
+    while (k < line.size() && (line[k] == ' ' || line[k] == '\t')) ++k;
+    size_t w = k;
+    while (w < line.size() && !std::isspace(static_cast<unsigned char>(line[w]))) ++w;
+    const std::string_view word = line.substr(k, w - k);
+    for (const char* keep : {"v", "vt", "vn", "f", "o", "g", "usemtl", "mtllib", "s"}) {
+      if (word == keep) {
+        out.append(line);
+        break;
+      }
+    }
+    out.push_back('\n');
+    at = end + 1;
+  }
+  return out;
+}
+
 }  // namespace
 
 Model parse_obj_text(std::string_view obj, std::string_view mtl, const std::string& path,
@@ -37,7 +65,7 @@ Model parse_obj_text(std::string_view obj, std::string_view mtl, const std::stri
   config.triangulate = true;
   config.vertex_color = false;
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromString(std::string(obj), std::string(mtl), config)) {
+  if (!reader.ParseFromString(statements_rad_reads(obj), std::string(mtl), config)) {
     throw Error(SourceLoc{path}, "not a readable OBJ file: " + first_line(reader.Error()));
   }
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
