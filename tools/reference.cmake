@@ -7,7 +7,7 @@ add_library(rad_reference_compare STATIC
   ${rad_reference_dir}/compare.cpp
   ${rad_reference_dir}/ply_reader.cpp)
 target_include_directories(rad_reference_compare PUBLIC ${CMAKE_CURRENT_LIST_DIR})
-target_link_libraries(rad_reference_compare PUBLIC rad_hierarchy PRIVATE rad_warnings rad_optimize)
+target_link_libraries(rad_reference_compare PUBLIC rad_hierarchy PRIVATE rad_scene rad_warnings rad_optimize)
 
 add_library(rad_reference STATIC
   ${rad_reference_dir}/ray_scene.cpp

@@ -1,6 +1,7 @@
 // Axis-aligned bounding box.
 #pragma once
 
+#include <algorithm>
 #include <limits>
 
 #include "core/math.h"
@@ -23,6 +24,12 @@ struct Aabb {
   Vec3 extent() const { return empty() ? Vec3(0.0f) : hi - lo; }
   Vec3 center() const { return (lo + hi) * 0.5f; }
   float diagonal() const { return glm::length(extent()); }
+  /// The larger of the diagonal and the largest coordinate magnitude: float rounding of the
+  /// positions inside the box scales with it (about 1.2e-7 of it), not with the diagonal alone.
+  float magnitude() const {
+    if (empty()) return 0.0f;
+    return std::max(diagonal(), std::max(max_component(glm::abs(lo)), max_component(glm::abs(hi))));
+  }
 };
 
 }  // namespace rad

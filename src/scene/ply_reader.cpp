@@ -114,7 +114,7 @@ class Body {
 
 }  // namespace
 
-Model parse_ply(std::string_view bytes, const std::string& path) {
+PlyData parse_ply_data(std::string_view bytes, const std::string& path) {
   // Header: text lines up to "end_header".
   const size_t end = bytes.find("end_header");
   if (bytes.substr(0, 3) != "ply" || end == std::string_view::npos) {
@@ -168,13 +168,7 @@ Model parse_ply(std::string_view bytes, const std::string& path) {
   }
   if (!format) throw Error(SourceLoc{path, 1, 1}, "no 'format' line");
 
-  Model m;
-  m.path = path;
-  const std::string stem = std::filesystem::path(path).stem().string();
-  m.materials.push_back({stem, Vec3(0.8f), Vec3(0.0f), SourceLoc{path}});
-  ModelGroup g;
-  g.name = stem;
-  std::vector<Vec3> vertices;
+  PlyData out;
   Body in(bytes, body, *format, path, number + 1);
   for (const Element& e : elements) {
     // Each item takes at least one byte (binary) or two characters (ASCII) per property.
@@ -183,43 +177,65 @@ Model parse_ply(std::string_view bytes, const std::string& path) {
       in.fail("element '" + e.name + "' claims " + std::to_string(e.count) + " items, more than the file holds");
     }
     const bool is_vertex = e.name == "vertex", is_face = e.name == "face";
+    std::vector<std::vector<float>*> columns;
+    for (const Property& prop : e.properties) {
+      columns.push_back(is_vertex && !prop.list ? &out.vertex[prop.name] : nullptr);
+    }
+    if (is_vertex) out.vertex_count = size_t(e.count);
+    if (is_face && out.face_first.empty()) out.face_first.push_back(0);
     for (uint64_t i = 0; i < e.count; ++i) {
-      Vec3 p(0.0f);
-      int found = 0;
-      for (const Property& prop : e.properties) {
+      for (size_t k = 0; k < e.properties.size(); ++k) {
+        const Property& prop = e.properties[k];
         if (!prop.list) {
           const double v = in.value(prop.type);
-          if (is_vertex && (prop.name == "x" || prop.name == "y" || prop.name == "z")) {
+          if (columns[k]) {
             if (!std::isfinite(v) || std::abs(v) > 3e38) in.fail("vertex " + std::to_string(i) + " is not finite");
-            p[prop.name[0] - 'x'] = float(v);
-            ++found;
+            columns[k]->push_back(float(v));
           }
           continue;
         }
         const double count = in.value(prop.count_type);
         if (!(count >= 0) || count > double(in.left())) in.fail("a list longer than the file");
-        const size_t n = size_t(count);
         const bool indices = is_face && (prop.name == "vertex_indices" || prop.name == "vertex_index");
-        std::vector<uint32_t> face;
-        for (size_t k = 0; k < n; ++k) {
+        for (size_t n = size_t(count); n > 0; --n) {
           const double v = in.value(prop.type);
           if (!indices) continue;
-          if (!(v >= 0) || v >= double(vertices.size()) || v != std::floor(v)) {
+          if (!(v >= 0) || v >= double(out.vertex_count) || v != std::floor(v)) {
             in.fail("face " + std::to_string(i) + " names vertex " + std::to_string(v) + " of " +
-                    std::to_string(vertices.size()));
+                    std::to_string(out.vertex_count));
           }
-          face.push_back(uint32_t(v));
+          out.face_indices.push_back(uint32_t(v));
         }
-        for (size_t k = 2; k < face.size(); ++k) {
-          g.triangles.push_back({vertices[face[0]], vertices[face[k - 1]], vertices[face[k]]});
-          g.material.push_back(0);
-          g.triangle_locs.push_back(SourceLoc{path});
-        }
+        if (indices) out.face_first.push_back(uint32_t(out.face_indices.size()));
       }
-      if (is_vertex) {
-        if (found != 3) in.fail("the vertex element needs properties x, y and z");
-        vertices.push_back(p);
-      }
+    }
+    if (is_vertex && !out.face_first.empty()) in.fail("the face element comes before the vertices");
+  }
+  return out;
+}
+
+const std::vector<float>& PlyData::column(const std::string& name, const std::string& path) const {
+  const auto it = vertex.find(name);
+  if (it == vertex.end()) throw Error(SourceLoc{path}, "the vertices have no property '" + name + "'");
+  return it->second;
+}
+
+Model parse_ply(std::string_view bytes, const std::string& path) {
+  const PlyData d = parse_ply_data(bytes, path);
+  const std::vector<float>&x = d.column("x", path), &y = d.column("y", path), &z = d.column("z", path);
+  const auto corner = [&](uint32_t i) { return Vec3(x[i], y[i], z[i]); };
+  Model m;
+  m.path = path;
+  const std::string stem = std::filesystem::path(path).stem().string();
+  m.materials.push_back({stem, Vec3(0.8f), Vec3(0.0f), SourceLoc{path}});
+  ModelGroup g;
+  g.name = stem;
+  for (size_t f = 0; f + 1 < d.face_first.size(); ++f) {
+    const uint32_t* v = d.face_indices.data() + d.face_first[f];
+    for (uint32_t k = 2; k < d.face_first[f + 1] - d.face_first[f]; ++k) {
+      g.triangles.push_back({corner(v[0]), corner(v[k - 1]), corner(v[k])});
+      g.material.push_back(0);
+      g.triangle_locs.push_back(SourceLoc{path});
     }
   }
   if (g.triangles.empty()) throw Error(SourceLoc{path}, "has no faces");

@@ -133,7 +133,7 @@ std::vector<Segment> random_segments(const Hierarchy& h, size_t n, uint32_t seed
   return out;
 }
 
-double ambiguity_limit(const Hierarchy& h) { return 1e-6 * h.bounds.diagonal(); }
+double ambiguity_limit(const Hierarchy& h) { return 1e-6 * h.bounds.magnitude(); }
 
 RayAgreement compare_rays(const Hierarchy& h, const VisibilityBackend& oracle,
                           const VisibilityBackend& backend, std::span<const Segment> segments) {

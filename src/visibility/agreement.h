@@ -24,7 +24,7 @@ std::vector<Segment> random_segments(const Hierarchy& h, size_t n, uint32_t seed
 double ambiguity_distance(const Hierarchy& h, const Segment& s);
 
 /// Closer than this to changing its answer, float rounding may decide either way: 1e-6 of the
-/// scene's diagonal (about 16 float ulps of coordinates centred near the box).
+/// scene's magnitude (Aabb::magnitude: about 8 float ulps of its coordinates).
 double ambiguity_limit(const Hierarchy& h);
 
 struct RayMismatch {

@@ -120,8 +120,7 @@ class EmbreeBackend final : public VisibilityBackend {
         // 4x the rounding scale of the coordinates (1e-6 of the diagonal, or of the largest
         // coordinate for a scene far from the origin): far above the error of either test, far
         // below the shadow offset (1e-5) and any feature.
-        margin_(4e-6f * std::max({h.bounds.diagonal(), max_component(glm::abs(h.bounds.lo)),
-                                  max_component(glm::abs(h.bounds.hi)), 1e-30f})) {
+        margin_(4e-6f * std::max(h.bounds.magnitude(), 1e-30f)) {
     const ScopedFlushDenormals denormals;
     device_ = rtcNewDevice(nullptr);
     if (!device_) {

@@ -31,6 +31,20 @@ std::vector<MeshVertex> all_vertices(const SolverState& s) {
   return v;
 }
 
+// The lit box solved for `shots` shots with the default options (Embree).
+SolverState solved(const Hierarchy& h, const VisibilityBackend& vis, int64_t shots) {
+  SolverOptions o;
+  o.max_shots = shots;
+  SolverState s = make_solver_state(h, o);
+  solve(s, vis);
+  return s;
+}
+
+std::string read_bytes(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
 fs::path temp_file(const std::string& name) {
   return fs::temp_directory_path() / (name + "-" + std::to_string(getpid()));
 }
@@ -38,19 +52,15 @@ fs::path temp_file(const std::string& name) {
 TEST(Checkpoint, ResumedSolveEndsBitIdenticalToAnUninterruptedOne) {
   const Hierarchy h = lit_box();
   const auto vis = make_visibility_backend(BackendKind::Embree, h);
-  SolverOptions o;
-  o.max_shots = 14;
-  SolverState whole = make_solver_state(h, o);
-  solve(whole, *vis);
+  const SolverState whole = solved(h, *vis, 14);
 
   const fs::path file = temp_file("rad-ckpt");
-  o.max_shots = 6;
-  SolverState first = make_solver_state(h, o);
-  solve(first, *vis);
-  const uint64_t id = solve_fingerprint(h, o, BackendKind::Embree);
+  const SolverState first = solved(h, *vis, 6);
+  const uint64_t id = solve_fingerprint(h, first.options, BackendKind::Embree);
   write_checkpoint(file, first, id);
 
-  o.max_shots = 14;  // the stop criteria are not part of the identity: a resumed run may go on
+  // The stop criteria are not part of the identity: a resumed run may go on.
+  const SolverOptions o = whole.options;
   ASSERT_EQ(id, solve_fingerprint(h, o, BackendKind::Embree));
   SolverState resumed = make_solver_state(h, o);
   read_checkpoint(file, resumed, id);
@@ -72,18 +82,14 @@ TEST(Checkpoint, ResumedSolveEndsBitIdenticalToAnUninterruptedOne) {
 TEST(Checkpoint, EqualStatesWriteEqualFiles) {
   const Hierarchy h = lit_box();
   const auto vis = make_visibility_backend(BackendKind::Embree, h);
-  SolverOptions o;
-  o.max_shots = 5;
   const fs::path f1 = temp_file("rad-ckpt-a"), f2 = temp_file("rad-ckpt-b");
   for (const fs::path& f : {f1, f2}) {
-    SolverState s = make_solver_state(h, o);
-    solve(s, *vis);
+    SolverState s = solved(h, *vis, 5);
     s.stats.shoot_seconds = s.stats.refine_seconds = 0;  // the only fields the clock sets
     for (ShotRecord& r : s.history) r.seconds = 0;
     write_checkpoint(f, s, 1);
   }
-  std::ifstream a(f1, std::ios::binary), b(f2, std::ios::binary);
-  const std::string sa{std::istreambuf_iterator<char>(a), {}}, sb{std::istreambuf_iterator<char>(b), {}};
+  const std::string sa = read_bytes(f1), sb = read_bytes(f2);
   EXPECT_GT(sa.size(), 1000u);
   EXPECT_TRUE(sa == sb);
   fs::remove(f1), fs::remove(f2);
@@ -101,18 +107,12 @@ std::string error_of(const fs::path& file, SolverState& s, uint64_t id) {
 TEST(Checkpoint, RefusesAnotherSolveADamagedFileATruncatedOneAndNoCheckpoint) {
   const Hierarchy h = lit_box();
   const auto vis = make_visibility_backend(BackendKind::Embree, h);
-  SolverOptions o;
-  o.max_shots = 4;
-  SolverState s = make_solver_state(h, o);
-  solve(s, *vis);
+  const SolverState s = solved(h, *vis, 4);
+  const SolverOptions o = s.options;
   const uint64_t id = solve_fingerprint(h, o, BackendKind::Embree);
   const fs::path file = temp_file("rad-ckpt-bad");
   write_checkpoint(file, s, id);
-  std::string bytes;
-  {
-    std::ifstream in(file, std::ios::binary);
-    bytes.assign(std::istreambuf_iterator<char>(in), {});
-  }
+  const std::string bytes = read_bytes(file);
   auto write = [&](const std::string& b) { std::ofstream(file, std::ios::binary) << b; };
 
   SolverState fresh = make_solver_state(h, o);

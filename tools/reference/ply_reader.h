@@ -15,7 +15,7 @@ struct PlyMesh {
   std::vector<uint32_t> indices;  // 3 per face
 };
 
-/// Reads an ASCII or binary little-endian PLY with vertex properties x, y, z and radiosity_r,
+/// Reads a PLY (scene/ply_reader.h) with vertex properties x, y, z and radiosity_r,
 /// radiosity_g, radiosity_b (others skipped) and triangle faces (list vertex_indices).
 /// Throws rad::Error naming the file on anything else.
 PlyMesh read_radiosity_ply(const std::string& path);
