@@ -17,9 +17,14 @@ int main(int argc, char** argv) {
   app.add_option("OUT", out_path, "description file to write (.des)")->required();
   app.add_option("--size", size, "approximate number of triangles")->capture_default_str();
   app.add_option("--seed", seed, "random seed")->capture_default_str();
+  int lights_reach = -1;
+  app.add_option("--lights-reach", lights_reach,
+                 "building: each room lights only the rooms within this many rooms (a Lights "
+                 "list); -1: every room lights the whole building")
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   try {
-    rad::SceneDescription scene = rad::generate_scene(rad::parse_scene_kind(kind), size, seed);
+    rad::SceneDescription scene = rad::generate_scene(rad::parse_scene_kind(kind), size, seed, lights_reach);
     std::ofstream out(out_path);
     if (!out) throw rad::Error(fmt::format("cannot write {}", out_path));
     rad::write_description(scene, out);

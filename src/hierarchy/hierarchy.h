@@ -22,6 +22,11 @@ struct Triangles {
   size_t size() const { return corners.size(); }
 };
 
+/// Triangles [first, first + count) of the depth-first table: one object and all below it.
+struct TriangleRange {
+  uint32_t first = 0, count = 0;
+};
+
 struct SceneObject {
   std::string name;
   ObjectKind kind = ObjectKind::Pure;
@@ -32,6 +37,12 @@ struct SceneObject {
   uint32_t first_triangle = 0;  // triangles below this object: [first, first + count)
   uint32_t triangle_count = 0;
   Material material;            // Pure only
+  // The per-object flags of SPEC §8, resolved: the object's own setting, else its nearest
+  // ancestor's, else the default.
+  bool casts_shadows = true;     // false: shadow rays pass through its triangles
+  bool receives_shadows = true;  // false: its vertices take every visibility term as 1
+  int32_t influence = -1;        // the object whose Lights list applies here; -1: lights all
+  std::vector<TriangleRange> lit;  // with a Lights list: what it lights, sorted and merged
 };
 
 struct Hierarchy {
@@ -50,9 +61,13 @@ struct Hierarchy {
 inline constexpr float kMaxCoordinate = 1e8f;
 
 /// Builds the hierarchy: computes normals, areas and boxes, drops zero-area triangles (one
-/// warning counting them), and orders triangles depth-first. Throws rad::Error if an object
-/// ends up empty.
+/// warning counting them), orders triangles depth-first, and resolves the per-object flags and
+/// the names in Lights lists (every object of a listed name). Throws rad::Error if an object
+/// ends up empty or a list names no object.
 Hierarchy build_hierarchy(const SceneDescription& scene);
+
+/// Whether a shooter whose Pure has SceneObject::influence `influence` lights triangle t.
+bool influence_reaches(const Hierarchy& h, int32_t influence, uint32_t t);
 
 /// Counts per kind, triangles, emitters, bounds: the summary printed by `rad --check`.
 std::string summarize(const Hierarchy& h);

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,11 +23,27 @@ struct Material {
   Vec3 emission{0.0f};
 };
 
+/// An object named in a `Lights` list, where it was written.
+struct NamedObject {
+  std::string name;
+  SourceLoc loc;
+};
+
+/// The original's proposed per-object flags (SPEC §8), as written; unset means "as the parent".
+/// They apply to the object and everything below it, the nearest setting winning.
+struct ObjectFlags {
+  std::optional<bool> casts_shadows;     // false: invisible to shadow rays
+  std::optional<bool> receives_shadows;  // false: every visibility term of its vertices is 1
+  bool has_lights = false;               // an influence list was given: it lights only
+  std::vector<NamedObject> lights;       // itself and these objects (with all below them)
+};
+
 /// One object of the description. Children index SceneDescription::objects.
 struct ObjectDescription {
   std::string name;
   ObjectKind kind = ObjectKind::Pure;
   SourceLoc loc;                      // where "Object" was written
+  ObjectFlags flags;
   std::vector<int32_t> children;      // Assembly and Composite only
   Material material;                  // Pure only
   std::vector<std::array<Vec3, 3>> triangles;  // Pure only: corners a, b, c (front: (b-a)x(c-a))

@@ -18,8 +18,10 @@ namespace rad {
 
 namespace {
 
-constexpr std::array<std::string_view, 9> kKeywords = {
-    "Object", "Assembly", "Composite", "Pure", "Reflectivity", "Color", "Emission", "File", "Data"};
+constexpr std::array<std::string_view, 14> kKeywords = {
+    "Object", "Assembly",     "Composite",       "Pure",   "Reflectivity",
+    "Color",  "Emission",     "File",            "Data",   "CastsShadows",
+    "ReceivesShadows", "Lights", "Yes",          "No"};
 constexpr std::array<const char*, 3> kChannels = {"red", "green", "blue"};
 
 bool is_keyword(std::string_view word) {
@@ -164,6 +166,7 @@ class Parser {
     d.name = name;
     d.kind = k;
     d.loc = object.loc;
+    d.flags = parse_flags();
     scene_.objects.push_back(std::move(d));
     switch (k) {
       case ObjectKind::Assembly:
@@ -177,6 +180,44 @@ class Parser {
         break;
     }
     return id;
+  }
+
+  // Flags ::= Flag Flags | (nothing)
+  // Flag  ::= "CastsShadows" YesNo | "ReceivesShadows" YesNo | "Lights" "{" Strings "}"
+  ObjectFlags parse_flags() {
+    ObjectFlags f;
+    for (;;) {
+      const Token& t = tokens_.peek();
+      if (is_word(t, "CastsShadows") || is_word(t, "ReceivesShadows")) {
+        const Token flag = tokens_.next();
+        std::optional<bool>& slot =
+            flag.text == "CastsShadows" ? f.casts_shadows : f.receives_shadows;
+        if (slot) throw Error(flag.loc, "'" + flag.text + "' given twice for one object");
+        const Token value = tokens_.next();
+        if (!is_word(value, "Yes") && !is_word(value, "No")) {
+          fail_expected(value, "'Yes' or 'No' after '" + flag.text + "'", true);
+        }
+        slot = value.text == "Yes";
+      } else if (is_word(t, "Lights")) {
+        const Token flag = tokens_.next();
+        if (f.has_lights) throw Error(flag.loc, "'Lights' given twice for one object");
+        f.has_lights = true;
+        expect_symbol('{', " after 'Lights'");
+        while (!is_symbol(tokens_.peek(), '}')) {
+          const Token name = tokens_.next();
+          if (name.kind != TokenKind::String) {
+            fail_expected(name, "an object's name (a quoted string) or '}'", false);
+          }
+          f.lights.push_back({name.text, name.loc});
+        }
+        tokens_.next();
+      } else {
+        if (!is_symbol(t, '{')) {
+          fail_expected(t, "'CastsShadows', 'ReceivesShadows', 'Lights' or '{'", true);
+        }
+        return f;
+      }
+    }
   }
 
   // Assembly ::= "Assembly" "{" Composition "}";  Composite ::= "Composite" "{" Objects "}"

@@ -202,6 +202,8 @@ uint64_t solve_fingerprint(const Hierarchy& h, const SolverOptions& o, BackendKi
   for (const SceneObject& ob : h.objects) {
     f.add(ob.kind).add(ob.parent).add(ob.first_triangle).add(ob.triangle_count);
     f.add(ob.material.reflectance).add(ob.material.emission);
+    f.add(ob.casts_shadows).add(ob.receives_shadows).add(ob.influence).add(uint64_t(ob.lit.size()));
+    for (const TriangleRange& r : ob.lit) f.add(r.first).add(r.count);
   }
   f.add(o.shadows).add(o.sample_grid).add(o.max_sample_grid).add(o.method);
   f.add(o.subdivision_threshold).add(o.midpoints).add(o.min_size).add(o.max_size);

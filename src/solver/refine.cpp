@@ -23,10 +23,11 @@ Vec3 regather_shots(const SolverState& s, const Vec3& x, uint32_t polygon, bool 
                     GatherScratch& scratch, Vec3* major_part) {
   const Triangles& tris = s.hierarchy->triangles;
   const Vec3 n = tris.normal[polygon], centroid = polygon_centroid(tris, polygon);
+  const GatherSettings own = receiver_settings(settings, s, polygon);
   Vec3 all(0.0f), major(0.0f);
   for (const ShotSource& k : s.shot_log) {
     if ((major_only && !k.major) || !may_receive(s, polygon, k)) continue;
-    const Vec3 g = gather_from_source(x, n, centroid, k, vis, settings, scratch);
+    const Vec3 g = gather_from_source(x, n, centroid, k, vis, own, scratch);
     all += g;
     if (k.major) major += g;
   }
@@ -123,7 +124,8 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
         }
         const Vec3 dh =
             gather_from_source(mid.position, tris.normal[x.polygon],
-                               polygon_centroid(tris, x.polygon), *src, vis, settings, sc);
+                               polygon_centroid(tris, x.polygon), *src, vis,
+                               receiver_settings(settings, s, x.polygon), sc);
         Vec3 major_h(0.0f);
         regather_shots(s, mid.position, x.polygon, true, vis, settings, sc, &major_h);
         // Earlier minor shots: interpolated from the edge's ends (SPEC §5).

@@ -16,6 +16,19 @@ GatherSettings gather_settings(const SolverState& s) {
   return g;
 }
 
+GatherSettings receiver_settings(const GatherSettings& g, const SolverState& s, size_t p) {
+  const Hierarchy& h = *s.hierarchy;
+  GatherSettings r = g;
+  r.shadows = g.shadows && h.objects[size_t(h.triangles.object[p])].receives_shadows;
+  return r;
+}
+
+int32_t shooter_influence(const SolverState& s, const ShotSource& src) {
+  const Hierarchy& h = *s.hierarchy;
+  const uint32_t p = s.clusters.polygons[s.clusters.first[size_t(src.cluster)]];
+  return h.objects[size_t(h.triangles.object[p])].influence;
+}
+
 Vec3 polygon_centroid(const Triangles& t, size_t p) {
   const auto& c = t.corners[p];
   return (c[0] + c[1] + c[2]) * (1.0f / 3.0f);
@@ -23,6 +36,7 @@ Vec3 polygon_centroid(const Triangles& t, size_t p) {
 
 bool may_receive(const SolverState& s, size_t p, const ShotSource& src) {
   if (src.planar && s.clusters.cluster_of[p] == uint32_t(src.cluster)) return false;
+  if (!influence_reaches(*s.hierarchy, shooter_influence(s, src), uint32_t(p))) return false;
   const Triangles& t = s.hierarchy->triangles;
   const auto& c = t.corners[p];
   bool any_in_front = false;
@@ -40,8 +54,13 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
   const GatherSettings settings = gather_settings(s);
   const SharedVertices& shared = s.shared;
   received.assign(tris.size(), 0);
-  tbb::parallel_for(size_t(0), tris.size(),
-                    [&](size_t p) { received[p] = may_receive(s, p, src); });
+  // With a Lights list only the triangles it names are looked at.
+  const int32_t influence = shooter_influence(s, src);
+  const std::vector<TriangleRange> all{{0, uint32_t(tris.size())}};
+  for (const TriangleRange& r : influence < 0 ? all : s.hierarchy->objects[size_t(influence)].lit) {
+    tbb::parallel_for(size_t(r.first), size_t(r.first) + r.count,
+                      [&](size_t p) { received[p] = may_receive(s, p, src); });
+  }
   // A shared vertex is skipped when the one that gathers for it is in a received polygon.
   auto copied = [&](size_t p, size_t v) {
     return shared.copies_gain(uint32_t(p), uint32_t(v)) &&
@@ -55,12 +74,13 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
       PolygonMesh& mesh = s.mesh.polygons[p];
       const Vec3 n = tris.normal[p], centroid = polygon_centroid(tris, p);
       const Vec3 rho = s.material_of(p).reflectance;
+      const GatherSettings own = receiver_settings(settings, s, p);
       auto body = [&](size_t v0, size_t v1) {
         GatherScratch& sc = scratch.local();
         for (size_t v = v0; v < v1; ++v) {
           if (copied(p, v)) continue;
           MeshVertex& x = mesh.vertices[v];
-          const Vec3 dh = gather_from_source(x.position, n, centroid, src, vis, settings, sc);
+          const Vec3 dh = gather_from_source(x.position, n, centroid, src, vis, own, sc);
           x.irradiance += dh;
           x.unshot += rho * dh;
           x.shot = dh;

@@ -12,11 +12,18 @@ namespace rad {
 /// Gather settings for a state (absolute cut level from the relative option).
 GatherSettings gather_settings(const SolverState& s);
 
+/// `g` for receiving polygon p: without shadow rays where its object receives no shadows.
+GatherSettings receiver_settings(const GatherSettings& g, const SolverState& s, size_t p);
+
+/// SceneObject::influence of the Pure that shoots `src`: -1 when it lights everything.
+int32_t shooter_influence(const SolverState& s, const ShotSource& src);
+
 /// Centroid of polygon p.
 Vec3 polygon_centroid(const Triangles& t, size_t p);
 
 /// False when no point of polygon p can gain from `src`: p belongs to the planar cluster that
-/// shoots, or lies behind all of it, or all of it lies behind p's plane.
+/// shoots, or is not on its Lights list, or lies behind all of it, or all of it lies behind p's
+/// plane.
 bool may_receive(const SolverState& s, size_t p, const ShotSource& src);
 
 /// Shoots `src` (whose unshot radiosity the caller has already cleared) to every vertex of every

@@ -11,7 +11,7 @@ namespace {
 
 class BruteBackend final : public VisibilityBackend {
  public:
-  explicit BruteBackend(const Hierarchy& h) : records_(make_triangle_records(h.triangles)) {}
+  explicit BruteBackend(const Hierarchy& h) : records_(make_triangle_records(h)) {}
 
   BackendKind kind() const override { return BackendKind::Brute; }
 

@@ -116,7 +116,7 @@ class EmbreeBackend final : public VisibilityBackend {
  public:
   EmbreeBackend(const Hierarchy& h, const VisibilityOptions& options)
       : packets_(options.packets),
-        records_(make_triangle_records(h.triangles)),
+        records_(make_triangle_records(h)),
         // 4x the rounding scale of the coordinates (1e-6 of the diagonal, or of the largest
         // coordinate for a scene far from the origin): far above the error of either test, far
         // below the shadow offset (1e-5) and any feature.
@@ -140,7 +140,8 @@ class EmbreeBackend final : public VisibilityBackend {
     // scenes hung on this machine's AVX-512 path).
     geometry_data_.reserve(h.objects.size());
     for (const SceneObject& o : h.objects) {
-      if (o.kind != ObjectKind::Pure || o.triangle_count == 0) continue;
+      // A Pure that casts no shadows is left out: the shared test would reject its hits anyway.
+      if (o.kind != ObjectKind::Pure || o.triangle_count == 0 || !o.casts_shadows) continue;
       RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
       check("creating a geometry");
       auto* vertices = static_cast<float*>(

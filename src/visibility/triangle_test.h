@@ -44,10 +44,17 @@ inline TriangleRecord make_triangle_record(const std::array<Vec3, 3>& t) {
   return r;
 }
 
-/// Records for every triangle of the table, same indices.
-inline std::vector<TriangleRecord> make_triangle_records(const Triangles& triangles) {
+/// Records for every triangle of the hierarchy, same indices. A triangle whose object casts no
+/// shadows (SPEC §8) gets the all-zero record, which no segment hits: every backend asks this
+/// one test, so all of them see through it alike.
+inline std::vector<TriangleRecord> make_triangle_records(const Hierarchy& h) {
+  const Triangles& triangles = h.triangles;
   std::vector<TriangleRecord> out(triangles.size());
-  for (size_t i = 0; i < triangles.size(); ++i) out[i] = make_triangle_record(triangles.corners[i]);
+  for (size_t i = 0; i < triangles.size(); ++i) {
+    if (h.objects[size_t(triangles.object[i])].casts_shadows) {
+      out[i] = make_triangle_record(triangles.corners[i]);
+    }
+  }
   return out;
 }
 

@@ -134,5 +134,65 @@ TEST(Hierarchy, SummarizesKindsTrianglesEmittersAndBounds) {
   EXPECT_NE(s.find("Emitters: 1 Pures, 1 triangles"), std::string::npos) << s;
 }
 
+const char* kFlagged = R"("flags"
+Object "house" Assembly Lights { "lamp" } {
+  Object "room" Assembly CastsShadows No Lights { "hall" "lamp" } {
+    Object "floor" Pure ReceivesShadows No { Reflectivity 0.5 Color <1 1 1> Emission 0
+      Data { <0 0 0> <0 0 4> <4 0 0> } }
+    Object "glass" Pure CastsShadows Yes { Reflectivity 0.5 Color <1 1 1> Emission 0
+      Data { <0 0 0> <0 1 4> <4 0 0> } }
+  }
+  Object "wall" Pure { Reflectivity 0.5 Color <1 1 1> Emission 0
+    Data { <0 0 0> <0 2 4> <4 0 0> } }
+}
+Object "hall" Pure { Reflectivity 0.5 Color <1 1 1> Emission 0 Data { <0 0 0> <0 3 4> <4 0 0> } }
+Object "lamp" Pure { Reflectivity 0 Color <1 1 1> Emission 5 Data { <0 0 0> <0 4 4> <4 0 0> } }
+Object "lamp" Pure { Reflectivity 0 Color <1 1 1> Emission 5 Data { <0 0 0> <0 5 4> <4 0 0> } }
+)";
+
+TEST(Hierarchy, ObjectFlagsHoldForEverythingBelowUnlessSetAgain) {
+  Hierarchy h = build(kFlagged);
+  // house, room, floor, glass, wall, hall, lamp, lamp
+  ASSERT_EQ(h.objects.size(), 8u);
+  EXPECT_FALSE(h.objects[2].casts_shadows);  // floor: from room
+  EXPECT_FALSE(h.objects[2].receives_shadows);
+  EXPECT_TRUE(h.objects[3].casts_shadows);  // glass sets it again
+  EXPECT_TRUE(h.objects[3].receives_shadows);
+  EXPECT_TRUE(h.objects[4].casts_shadows);  // wall: house sets nothing
+  EXPECT_EQ(h.objects[2].influence, 1);     // the nearest list: room's
+  EXPECT_EQ(h.objects[4].influence, 0);     // house's
+  EXPECT_EQ(h.objects[5].influence, -1);    // hall lights everything
+}
+
+TEST(Hierarchy, ALightsListReachesItselfAndEveryObjectOfEachName) {
+  Hierarchy h = build(kFlagged);
+  // Triangles: floor 0, glass 1, wall 2, hall 3, lamps 4 and 5.
+  const std::vector<TriangleRange>& room = h.objects[1].lit;
+  ASSERT_EQ(room.size(), 2u);  // room [0, 2) and hall + both lamps [3, 6), merged
+  EXPECT_EQ(room[0].first, 0u);
+  EXPECT_EQ(room[0].count, 2u);
+  EXPECT_EQ(room[1].first, 3u);
+  EXPECT_EQ(room[1].count, 3u);
+  const bool expected[6] = {true, true, false, true, true, true};
+  for (uint32_t t = 0; t < 6; ++t) EXPECT_EQ(influence_reaches(h, 1, t), expected[t]) << t;
+  for (uint32_t t = 0; t < 6; ++t) EXPECT_EQ(influence_reaches(h, 0, t), t != 3) << t;
+  for (uint32_t t = 0; t < 6; ++t) EXPECT_TRUE(influence_reaches(h, -1, t));
+}
+
+TEST(Hierarchy, RejectsALightsListNamingNoObject) {
+  try {
+    build(R"("s"
+Object "a" Pure Lights { "nobody" } { Reflectivity 0 Color <1 1 1> Emission 1
+  Data { <0 0 0> <0 1 0> <1 0 0> } })");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.loc().line, 2);
+    EXPECT_EQ(e.loc().column, 26);
+    EXPECT_NE(std::string(e.what()).find("\"a\" lights \"nobody\", but no object has that name"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace rad

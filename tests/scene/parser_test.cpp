@@ -241,6 +241,47 @@ TEST_F(ParserFiles, ReportsMissingDescriptionFile) {
   }
 }
 
+TEST(Parser, ReadsObjectFlagsAndLightsLists) {
+  SceneDescription d = parse_scene_text(
+      "\"s\"\nObject \"room\" Assembly Lights { \"hall\" \"room 2\" } CastsShadows Yes {\n" +
+          pure("lamp") + "}\nObject \"glass\" Pure ReceivesShadows No CastsShadows No " +
+          pure("x").substr(pure("x").find('{')),
+      "scene.des");
+  ASSERT_EQ(d.objects.size(), 3u);
+  const ObjectFlags& room = d.objects[0].flags;
+  EXPECT_TRUE(room.has_lights);
+  ASSERT_EQ(room.lights.size(), 2u);
+  EXPECT_EQ(room.lights[1].name, "room 2");
+  EXPECT_EQ(room.lights[1].loc.line, 2);
+  EXPECT_EQ(room.lights[1].loc.column, 40);
+  EXPECT_EQ(room.casts_shadows, std::optional<bool>(true));
+  EXPECT_FALSE(room.receives_shadows.has_value());
+  const ObjectFlags& lamp = d.objects[1].flags;
+  EXPECT_FALSE(lamp.has_lights || lamp.casts_shadows || lamp.receives_shadows);
+  EXPECT_EQ(d.objects[2].flags.casts_shadows, std::optional<bool>(false));
+  EXPECT_EQ(d.objects[2].flags.receives_shadows, std::optional<bool>(false));
+}
+
+TEST(Parser, AcceptsAnEmptyLightsList) {
+  SceneDescription d = parse_scene_text("\"s\" Object \"a\" Pure Lights { } " +
+                                            pure("x").substr(pure("x").find('{')),
+                                        "scene.des");
+  EXPECT_TRUE(d.objects[0].flags.has_lights);
+  EXPECT_TRUE(d.objects[0].flags.lights.empty());
+}
+
+TEST(Parser, ReportsBadObjectFlags) {
+  expect_error("\"s\"\nObject \"w\" Pure CastsShadows Maybe {", 2, 30,
+               "expected 'Yes' or 'No' after 'CastsShadows'");
+  expect_error("\"s\"\nObject \"w\" Pure CastsShadows No CastsShadows Yes {", 2, 33,
+               "'CastsShadows' given twice");
+  expect_error("\"s\"\nObject \"w\" Pure Lights { lamp } {", 2, 26,
+               "expected an object's name (a quoted string) or '}' but found 'lamp'");
+  expect_error("\"s\"\nObject \"w\" Pure Lights \"lamp\" {", 2, 24, "expected '{' after 'Lights'");
+  expect_error("\"s\"\nObject \"w\" Pure receivesShadows No {", 2, 17,
+               "keywords are case-sensitive: 'ReceivesShadows'");
+}
+
 TEST(Parser, FormatsErrorsAsPathLineColumn) {
   Error e = parse_error("\"s\"\nObject \"w\" Pure { Reflectivity 0.5 Color <1 1 1>\n  Object");
   EXPECT_STREQ(e.what(), "scene.des:3:3: error: expected 'Emission' but found 'Object'");

@@ -111,6 +111,7 @@ class Builder {
     return int32_t(scene_.objects.size()) - 1;
   }
   void root(int32_t id) { scene_.roots.push_back(id); }
+  ObjectDescription& object(int32_t id) { return scene_.objects[size_t(id)]; }
   SceneDescription take() { return std::move(scene_); }
 
  private:
@@ -263,7 +264,8 @@ SceneDescription make_teapot_in_stadium(int stacks) {
   return b.take();
 }
 
-SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess, uint64_t seed) {
+SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess, uint64_t seed,
+                               int lights_reach) {
   nx = std::max(nx, 1), nz = std::max(nz, 1);
   const int t = std::max(wall_tess, 1), f = std::max(furniture_tess, 1);
   Rng rng(seed);
@@ -313,7 +315,20 @@ SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess
       Vec3 cab = o + Vec3(w - 0.7f, 0.0f, rng.uniform(1.5f, 3.0f));
       room.push_back(b.pure(name + ".cabinet", grey(0.4f),
                             box_tris(cab, cab + Vec3(0.6f, 1.8f, 0.8f), 2 * f)));
-      row.push_back(b.group(ObjectKind::Assembly, name, std::move(room)));
+      const int32_t id = b.group(ObjectKind::Assembly, name, std::move(room));
+      if (lights_reach >= 0) {  // it lights itself and the rooms within reach
+        ObjectFlags& f = b.object(id).flags;
+        f.has_lights = true;
+        for (int di = -lights_reach; di <= lights_reach; ++di) {
+          for (int dk = -lights_reach; dk <= lights_reach; ++dk) {
+            const int a = i + di, c = k + dk;
+            if ((di || dk) && a >= 0 && a < nx && c >= 0 && c < nz) {
+              f.lights.push_back({fmt::format("room{}_{}", a, c), {}});
+            }
+          }
+        }
+      }
+      row.push_back(id);
     }
     rows.push_back(b.group(ObjectKind::Assembly, fmt::format("row{}", i), std::move(row)));
   }
@@ -321,7 +336,8 @@ SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess
   return b.take();
 }
 
-SceneDescription generate_scene(SceneKind kind, uint64_t triangles, uint64_t seed) {
+SceneDescription generate_scene(SceneKind kind, uint64_t triangles, uint64_t seed,
+                                int lights_reach) {
   double n = double(std::max<uint64_t>(triangles, 1));
   switch (kind) {
     case SceneKind::CornellBox:
@@ -339,7 +355,7 @@ SceneDescription generate_scene(SceneKind kind, uint64_t triangles, uint64_t see
     case SceneKind::Building: {
       int rooms = std::max(1, int(std::lround(n / 1600.0)));
       int nx = std::max(1, int(std::lround(std::sqrt(double(rooms)))));
-      return make_building(nx, std::max(1, (rooms + nx - 1) / nx), 4, 2, seed);
+      return make_building(nx, std::max(1, (rooms + nx - 1) / nx), 4, 2, seed, lights_reach);
     }
   }
   throw Error("unknown scene kind");
@@ -370,7 +386,16 @@ void write_description(const SceneDescription& scene, std::ostream& out) {
   auto write = [&](auto&& self, int32_t id, int depth) -> void {
     const ObjectDescription& o = scene.objects[id];
     std::string pad(2 * depth, ' ');
-    out << pad << "Object \"" << o.name << "\" " << to_string(o.kind) << " {\n";
+    out << pad << "Object \"" << o.name << "\" " << to_string(o.kind);
+    const ObjectFlags& f = o.flags;
+    if (f.casts_shadows) out << " CastsShadows " << (*f.casts_shadows ? "Yes" : "No");
+    if (f.receives_shadows) out << " ReceivesShadows " << (*f.receives_shadows ? "Yes" : "No");
+    if (f.has_lights) {
+      out << " Lights {";
+      for (const NamedObject& n : f.lights) out << " \"" << n.name << '"';
+      out << " }";
+    }
+    out << " {\n";
     if (o.kind == ObjectKind::Pure) {
       const Material& m = o.material;
       float rho = max_component(m.reflectance), e = max_component(m.emission);

@@ -23,8 +23,11 @@ const char* to_string(SceneKind kind);
 SceneKind parse_scene_kind(std::string_view name);
 
 /// A scene of the given family with about `triangles` triangles (within a factor ~1.5; at least
-/// a few dozen), the same for the same (kind, triangles, seed) on every platform.
-SceneDescription generate_scene(SceneKind kind, uint64_t triangles, uint64_t seed);
+/// a few dozen), the same for the same (kind, triangles, seed) on every platform. A building's
+/// rooms get Lights lists (SPEC §8) naming the rooms within `lights_reach` rooms (Chebyshev
+/// distance) when it is 0 or more.
+SceneDescription generate_scene(SceneKind kind, uint64_t triangles, uint64_t seed,
+                                int lights_reach = -1);
 
 /// Cornell box in [0, 1]³ (y up, open front at z = 1): floor, ceiling, back, red left and green
 /// right walls each cut into k × k quads (2k² triangles), a light quad under the ceiling and two
@@ -46,8 +49,10 @@ SceneDescription make_teapot_in_stadium(int stacks);
 /// (floor, ceiling, walls with door openings to the neighbours, cut into wall_tess × wall_tess
 /// quads per piece), a light, and furniture Composites (a table, chairs, a cabinet) made of boxes
 /// with furniture_tess² quads per face. About 1600 triangles per room with the defaults (wall_tess
-/// 4, furniture_tess 2).
-SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess, uint64_t seed);
+/// 4, furniture_tess 2). With lights_reach >= 0 each room lights only itself and the rooms
+/// within that many rooms along each axis (a Lights list).
+SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess, uint64_t seed,
+                               int lights_reach = -1);
 
 /// Every triangle cut into k × k congruent triangles of a barycentric grid, same orientation: the
 /// surface is exactly the same, only its tessellation changes. Grid points shared by neighbouring
