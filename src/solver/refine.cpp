@@ -43,7 +43,13 @@ void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBa
 void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Vec3& d_rho,
                      const VisibilityBackend& vis, const std::vector<uint8_t>& received) {
   const Triangles& tris = s.hierarchy->triangles;
-  const size_t np = tris.size();
+  // Only the received polygons are looked at: a shot of a Lights list reaches a few rooms of a
+  // building, and per-polygon work over the whole scene would cost more than the shot.
+  std::vector<uint32_t> polygons;
+  for (size_t p = 0; p < received.size(); ++p) {
+    if (received[p]) polygons.push_back(uint32_t(p));
+  }
+  const size_t np = polygons.size();
   const float limit = s.options.subdivision_threshold * s.radiosity_scale;
   const float min_split_edge = 2.0f * s.min_size;  // children must keep edges >= min_size
   const GatherSettings settings = gather_settings(s);
@@ -52,8 +58,8 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
   std::vector<std::vector<uint32_t>> check(np), next(np);
   std::vector<std::vector<ExactVertex>> exact(np);
   std::vector<uint64_t> splits(np, 0), interpolated(np, 0);
-  tbb::parallel_for(size_t(0), np, [&](size_t p) {
-    if (received[p]) for_each_leaf(s.mesh.polygons[p], [&](uint32_t e) { check[p].push_back(e); });
+  tbb::parallel_for(size_t(0), np, [&](size_t i) {
+    for_each_leaf(s.mesh.polygons[polygons[i]], [&](uint32_t e) { check[i].push_back(e); });
   });
 
   std::vector<ExactVertex> flat;
@@ -62,16 +68,17 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
     // 1. Split what needs it; interpolated midpoints get their values now (their ends are
     //    final: only vertices of elements checked in this pass are ends).
     tbb::parallel_for(tbb::blocked_range<size_t>(0, np, 16), [&](const auto& range) {
-      for (size_t p = range.begin(); p != range.end(); ++p) {
-        next[p].clear();
-        exact[p].clear();
-        if (check[p].empty()) continue;
+      for (size_t i = range.begin(); i != range.end(); ++i) {
+        next[i].clear();
+        exact[i].clear();
+        if (check[i].empty()) continue;
+        const uint32_t p = polygons[i];
         PolygonMesh& m = s.mesh.polygons[p];
         const Material& mat = s.material_of(p);
         auto B = [&](uint32_t v) {
           return mat.emission + mat.reflectance * m.vertices[v].irradiance;
         };
-        for (uint32_t e : check[p]) {
+        for (uint32_t e : check[i]) {
           const uint32_t v[3] = {m.elements[e].v[0], m.elements[e].v[1], m.elements[e].v[2]};
           const Vec3 b0 = B(v[0]), b1 = B(v[1]), b2 = B(v[2]);
           const bool d01 = differs(b0, b1, limit), d12 = differs(b1, b2, limit),
@@ -81,11 +88,11 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
           auto index_of = [&](uint32_t x) { return x == v[0] ? 0 : x == v[1] ? 1 : 2; };
           NewMidpoint created[3];
           const int n = split_element(m, e, created);
-          ++splits[p];
+          ++splits[i];
           for (int k = 0; k < n; ++k) {
             const NewMidpoint& c = created[k];
             if (all_exact || exact_edge[index_of(c.a)][index_of(c.b)]) {
-              exact[p].push_back({uint32_t(p), c.vertex, c.a, c.b});
+              exact[i].push_back({p, c.vertex, c.a, c.b});
             } else {
               const MeshVertex &a = m.vertices[c.a], &b = m.vertices[c.b];
               MeshVertex& mid = m.vertices[c.vertex];
@@ -93,17 +100,17 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
               mid.unshot = (a.unshot + b.unshot) * 0.5f;
               mid.shot = (a.shot + b.shot) * 0.5f;
               mid.major = (a.major + b.major) * 0.5f;
-              ++interpolated[p];
+              ++interpolated[i];
             }
           }
           const uint32_t first = uint32_t(m.elements[e].first_child);
-          for (uint32_t c = 0; c < 4; ++c) next[p].push_back(first + c);
+          for (uint32_t c = 0; c < 4; ++c) next[i].push_back(first + c);
         }
       }
     });
     // 2. Compute the current shot exactly at the midpoints of edges beyond the limit.
     flat.clear();
-    for (size_t p = 0; p < np; ++p) flat.insert(flat.end(), exact[p].begin(), exact[p].end());
+    for (size_t i = 0; i < np; ++i) flat.insert(flat.end(), exact[i].begin(), exact[i].end());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, flat.size(), 16), [&](const auto& range) {
       const ScopedFlushDenormals ftz;  // as in shoot_to_receivers
       GatherScratch& sc = scratch.local();
@@ -145,14 +152,14 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
     });
     s.stats.exact_midpoints += flat.size();
     any = false;
-    for (size_t p = 0; p < np; ++p) {
-      std::swap(check[p], next[p]);
-      any |= !check[p].empty();
+    for (size_t i = 0; i < np; ++i) {
+      std::swap(check[i], next[i]);
+      any |= !check[i].empty();
     }
   }
-  for (size_t p = 0; p < np; ++p) {
-    s.stats.subdivisions += splits[p];
-    s.stats.interpolated_midpoints += interpolated[p];
+  for (size_t i = 0; i < np; ++i) {
+    s.stats.subdivisions += splits[i];
+    s.stats.interpolated_midpoints += interpolated[i];
   }
   for (const GatherScratch& sc : scratch) s.stats += sc.stats;
 }
