@@ -81,6 +81,9 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
   app.add_flag("!--no-shadows", c.solver.shadows, "No shadow rays: every visibility term is 1");
   app.add_option("--min-size", c.solver.min_size,
                  "Smallest element edge, scene units (default: scene diagonal / 256)");
+  app.add_option("--max-size", c.solver.max_size,
+                 "Largest element edge of the initial mesh, scene units (default: scene "
+                 "diagonal / 16, at least 2 x --min-size)");
   app.add_option("--samples", samples,
                  "Fewest samples per shooting cluster (a square: 1, 4, 9, 16, ... up to 256)")
       ->capture_default_str();

@@ -221,13 +221,13 @@ std::vector<int32_t> assign_face_polygons(const Triangles& t, std::span<const Ve
       const double size = std::sqrt(double(t.area[size_t(tri)]));
       return bc.inside() > -1e-5 && bc.distance <= 1e-4 * size;
     };
-    if (hint < int32_t(t.size()) && matches(hint)) {
-      polygon[face] = hint;
-      continue;
-    }
-    for (size_t tri = 0; tri < t.size(); ++tri) {
-      if (matches(int32_t(tri))) {
-        polygon[face] = hint = int32_t(tri);
+    // Polygons are written in order: search from the last match on, so a face on two
+    // overlapping coplanar triangles (furniture boxes that interpenetrate) goes to the one
+    // being written.
+    for (size_t k = 0; k < t.size(); ++k) {
+      const int32_t tri = int32_t((size_t(hint) + k) % t.size());
+      if (matches(tri)) {
+        polygon[face] = hint = tri;
         break;
       }
     }
