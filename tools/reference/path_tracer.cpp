@@ -117,8 +117,16 @@ DVec3 PathTracer::sample_irradiance(const Vec3& p0, const Vec3& n0, Pcg32& rng) 
   for (int depth = 0;; ++depth) {
     if (next_event_) irradiance += throughput * direct(p, n, rng);
     const Vec3 w = cosine_direction(n, rng);
-    const RayHit hit = scene_.intersect(p + n * offset_, w, std::numeric_limits<float>::max());
+    const Vec3 from = p + n * offset_;
+    RayHit hit = scene_.intersect(from, w, std::numeric_limits<float>::max());
     if (hit.triangle < 0) break;  // escaped
+    if (glm::dot(t.normal[size_t(hit.triangle)], w) >= 0.0f) {
+      // A back face, unless a front face lies at the same distance: two rooms' walls back to
+      // back are coincident, and which of two coplanar triangles Embree reports is arbitrary
+      // (taking the back one made every building's reference up to 25% too dark).
+      const RayHit front = scene_.intersect_front(from, w, hit.t * (1.0f + 1e-5f) + offset_);
+      if (front.triangle >= 0) hit = front;
+    }
     const Vec3& nh = t.normal[size_t(hit.triangle)];
     const float cos_y = -glm::dot(nh, w);
     if (cos_y <= 0.0f) break;  // back face: black

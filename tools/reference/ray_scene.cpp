@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <limits>
+#include <vector>
 
 #include "core/error.h"
 
@@ -12,6 +13,7 @@ namespace rad {
 struct RayScene::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
+  std::vector<Vec3> normals;  // per triangle, for the front-faces-only filter
 
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
@@ -24,6 +26,7 @@ struct RayScene::Impl {
 };
 
 RayScene::RayScene(const Triangles& triangles) : impl_(std::make_unique<Impl>()) {
+  impl_->normals = triangles.normal;
   FlushDenormals denormals;
   impl_->device = rtcNewDevice(nullptr);
   if (!impl_->device) {
@@ -32,7 +35,8 @@ RayScene::RayScene(const Triangles& triangles) : impl_(std::make_unique<Impl>())
   }
   impl_->scene = rtcNewScene(impl_->device);
   rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
-  rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneFlags(impl_->scene,
+                   RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
   RTCGeometry g = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
   const size_t n = triangles.size();
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
@@ -85,6 +89,48 @@ RayHit RayScene::intersect(const Vec3& origin, const Vec3& dir, float tfar) cons
   rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(impl_->scene, &context, &rh);
+  RayHit hit;
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
+  hit.triangle = int32_t(rh.hit.primID);
+  hit.t = rh.ray.tfar;
+  hit.u = rh.hit.u;
+  hit.v = rh.hit.v;
+  return hit;
+}
+
+namespace {
+
+// An intersection context that also carries the triangles' normals for its filter.
+struct FrontContext {
+  RTCIntersectContext context;
+  const Vec3* normals;
+};
+
+// Rejects hits on a triangle's back face.
+void front_faces_only(const RTCFilterFunctionNArguments* args) {
+  const auto* c = reinterpret_cast<const FrontContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const Vec3& n = c->normals[RTCHitN_primID(args->hit, args->N, i)];
+    const Vec3 d(RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
+                 RTCRayN_dir_z(args->ray, args->N, i));
+    if (glm::dot(n, d) >= 0.0f) args->valid[i] = 0;
+  }
+}
+
+}  // namespace
+
+RayHit RayScene::intersect_front(const Vec3& origin, const Vec3& dir, float tfar) const {
+  FrontContext fc;
+  rtcInitIntersectContext(&fc.context);
+  fc.context.filter = front_faces_only;
+  fc.normals = impl_->normals.data();
+  RTCRayHit rh;
+  fill_ray(rh.ray, origin, dir, tfar);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl_->scene, &fc.context, &rh);
   RayHit hit;
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
   hit.triangle = int32_t(rh.hit.primID);

@@ -48,6 +48,8 @@ class RayScene {
 
   /// Nearest hit of origin + s dir for s in (0, tfar).
   RayHit intersect(const Vec3& origin, const Vec3& dir, float tfar) const;
+  /// Nearest front-face hit (the ray meets the triangle's front side) for s in (0, tfar).
+  RayHit intersect_front(const Vec3& origin, const Vec3& dir, float tfar) const;
   /// True if any triangle meets origin + s dir for s in (0, tfar).
   bool occluded(const Vec3& origin, const Vec3& dir, float tfar) const;
 
