@@ -6,6 +6,7 @@
 #include <fstream>
 #include <set>
 
+#include "app/batch_summary.h"
 #include "app/scene_job.h"
 #include "core/error.h"
 #include "core/interrupt.h"
@@ -70,13 +71,21 @@ int run_batch(const CommandLine& cmd) {
   fs::create_directories(cmd.batch_dir);
   const std::vector<std::string> scenes = expand_scene_list(cmd.batch_scenes);
 
-  std::vector<Row> rows;
+  // Names over the whole list, so every shard gives a scene the same one.
+  std::vector<std::string> names;
   std::set<std::string> used;
   for (const std::string& scene : scenes) {
     std::string name = fs::path(scene).stem().string();
     for (int k = 2; !used.insert(name).second; ++k) name = fs::path(scene).stem().string() + "-" + std::to_string(k);
+    names.push_back(name);
+  }
+
+  std::vector<Row> rows;
+  for (size_t i = size_t(cmd.shard_index); i < scenes.size(); i += size_t(cmd.shard_count)) {
+    const std::string& scene = scenes[i];
+    const std::string& name = names[i];
     const fs::path base = fs::path(cmd.batch_dir) / name;
-    SceneJob job{scene, "", {}, base.string() + ".json"};
+    SceneJob job{scene, "", {}, base.string() + ".json", /*skip_if_done=*/true};
     if (!mesh_exts.empty()) job.mesh_output = base.string() + "." + mesh_exts[0];
     for (const std::string& e : image_exts) job.images.push_back(base.string() + "." + e);
     if (!cmd.quiet) std::printf("== %s\n", scene.c_str());
@@ -85,12 +94,20 @@ int run_batch(const CommandLine& cmd) {
       row.result = run_scene_job(cmd, job);
       row.detail = to_string(row.result.stop);
       if (row.result.stop == StopReason::Interrupted) row.status = "partial";
+      if (row.result.skipped) row.status = "done", row.detail = "outputs complete: skipped";
     } catch (const std::exception& e) {
       std::fprintf(stderr, "%s\n", e.what());
       row.status = "FAILED";
       row.detail = e.what();
     }
     rows.push_back(row);
+    if (!row.result.skipped) {  // a skipped scene keeps the row of the run that solved it
+      const SceneJobResult& x = row.result;
+      merge_batch_record(cmd.batch_dir,
+                         {name, scene, row.status == "FAILED" ? "failed" : row.status, row.detail,
+                          x.seconds, x.shots, uint64_t(x.vertices), cmd.shard_index,
+                          cmd.shard_count});
+    }
     if (interrupt_signal()) break;  // Ctrl-C: the scene in progress was written; no more
   }
 
@@ -99,7 +116,7 @@ int run_batch(const CommandLine& cmd) {
               "result");
   for (const Row& r : rows) {
     failed += r.status == "FAILED";
-    if (r.status != "FAILED") {
+    if (r.status != "FAILED" && !r.result.skipped) {
       std::printf("%-40s %-7s %7lld %9zu %9.2f  %s\n", r.scene.c_str(), r.status.c_str(),
                   static_cast<long long>(r.result.shots), r.result.vertices, r.result.seconds,
                   r.detail.c_str());

@@ -5,12 +5,33 @@
 #include <CLI/CLI.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <iostream>
 
 #include "core/error.h"
 
 namespace rad {
+
+void parse_shard(const std::string& text, int* index, int* count) {
+  std::string spec = text;
+  if (text == "slurm") {
+    const char* id = std::getenv("SLURM_ARRAY_TASK_ID");
+    const char* n = std::getenv("SLURM_ARRAY_TASK_COUNT");
+    const char* min = std::getenv("SLURM_ARRAY_TASK_MIN");
+    if (!id || !n) throw Error("'slurm' needs SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT (sbatch --array)");
+    long i = std::strtol(id, nullptr, 10) - (min ? std::strtol(min, nullptr, 10) : 0);
+    spec = std::to_string(i) + "/" + n;
+  }
+  long i = -1, n = 0;
+  char slash = 0, end = 0;
+  if (std::sscanf(spec.c_str(), "%ld%c%ld%c", &i, &slash, &n, &end) != 3 || slash != '/' ||
+      n < 1 || n > 1000000 || i < 0 || i >= n) {
+    throw Error("expected I/N with 0 <= I < N, or 'slurm'; got '" + spec + "'");
+  }
+  *index = int(i);
+  *count = int(n);
+}
 
 std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_code) {
   // The original's flags, spelled the modern way before CLI11 sees them.
@@ -44,8 +65,12 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
       "                                          export it in a browser (loopback by default);\n"
       "                                          Ctrl-C stops and writes --output/--image\n",
       "rad"};
-  std::string formats = "ply,png";
+  std::string formats = "ply,png", shard;
   if (c.batch) {
+    app.add_option("--shard", shard,
+                   "Solve this process's share of the list: I/N takes scenes I, I + N, I + 2N, "
+                   "... (0 <= I < N); 'slurm' takes I and N from the Slurm job array "
+                   "(SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN, SLURM_ARRAY_TASK_COUNT)");
     app.add_option("outdir", c.batch_dir, "Folder for every scene's outputs and stats")
         ->required();
     app.add_option("scenes", c.batch_scenes, "Scene files, or .txt files listing them")
@@ -200,6 +225,13 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
     };
     c.solver.sample_grid = grid(samples, "--samples");
     c.solver.max_sample_grid = std::max(grid(max_samples, "--max-samples"), c.solver.sample_grid);
+    if (!shard.empty()) {
+      try {
+        parse_shard(shard, &c.shard_index, &c.shard_count);
+      } catch (const Error& e) {
+        throw CLI::ValidationError("--shard", e.what());
+      }
+    }
     c.batch_formats.clear();
     for (size_t at = 0; at <= formats.size();) {
       const size_t comma = std::min(formats.find(',', at), formats.size());

@@ -42,11 +42,16 @@ struct CommandLine {
   std::string batch_dir;
   std::vector<std::string> batch_scenes;       // .des files, or .txt lists of them
   std::vector<std::string> batch_formats{"ply", "png"};  // one output per extension
+  int shard_index = 0, shard_count = 1;  // --shard I/N: the scenes i of the list with i % N == I
   // rad serve SCENE [--port P] [--host H]: the interactive mode (output: --output, optional).
   bool serve = false;
   std::string host = "127.0.0.1";
   int port = 8080;
 };
+
+/// `--shard` of rad batch: "I/N" (0 <= I < N), or "slurm" for the Slurm job array's task index
+/// and count. Throws rad::Error otherwise.
+void parse_shard(const std::string& text, int* index, int* count);
 
 /// Parses argv. Accepts the original's single-dash flags (-noshadows, -minsize F). Returns
 /// nothing when the program should exit with `exit_code` (after --help or a usage error, which

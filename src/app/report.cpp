@@ -6,6 +6,8 @@
 #include <nlohmann/json.hpp>
 #include <tbb/info.h>
 
+#include <fstream>
+
 #include "core/atomic_file.h"
 #include "mesh/patch_mesh.h"
 
@@ -40,7 +42,7 @@ size_t peak_memory_bytes() {
 
 void write_stats_json(const std::string& path, const CommandLine& cmd, const std::string& scene,
                       const SolverState& s, StopReason stop, const RunTimes& t,
-                      const SeamReport& seams) {
+                      const SeamReport& seams, uint64_t job_fingerprint) {
   using nlohmann::json;
   const VisibilityStats& r = s.stats.rays;
   const Vec3 ambient = ambient_radiosity(s);
@@ -97,9 +99,25 @@ void write_stats_json(const std::string& path, const CommandLine& cmd, const std
       {"peak_memory_bytes", peak_memory_bytes()},
       {"history", history},
   };
+  // Hex: JSON numbers are doubles to most readers.
+  if (job_fingerprint != 0) j["job_fingerprint"] = fmt::format("{:016x}", job_fingerprint);
   AtomicFile f(path);
   f.stream() << j.dump(2) << "\n";
   f.commit();
+}
+
+std::optional<uint64_t> read_job_fingerprint(const std::string& stats_json) {
+  std::ifstream in(stats_json);
+  if (!in) return std::nullopt;
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (!j.is_object() || !j.contains("job_fingerprint") || !j["job_fingerprint"].is_string()) {
+    return std::nullopt;
+  }
+  const std::string hex = j["job_fingerprint"].get<std::string>();
+  char* end = nullptr;
+  const uint64_t v = std::strtoull(hex.c_str(), &end, 16);
+  if (hex.empty() || *end != '\0') return std::nullopt;
+  return v;
 }
 
 }  // namespace rad

@@ -1,6 +1,8 @@
 // What a run prints and saves about itself: the original's statistics block and JSON.
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <string>
 
 #include "app/cli.h"
@@ -20,7 +22,11 @@ std::string format_statistics(const SolverState& s, double elapsed_seconds);
 /// Writes the JSON statistics (schema "rad-stats", version 1; see README) atomically.
 void write_stats_json(const std::string& path, const CommandLine& cmd, const std::string& scene,
                       const SolverState& s, StopReason stop, const RunTimes& times,
-                      const SeamReport& seams);
+                      const SeamReport& seams, uint64_t job_fingerprint = 0);
+
+/// The "job_fingerprint" a stats file was written with (rad batch's record that a scene's
+/// outputs are complete), or nothing when the file is missing, unreadable or has none.
+std::optional<uint64_t> read_job_fingerprint(const std::string& stats_json);
 
 /// Peak resident memory of this process, bytes (0 if unknown).
 size_t peak_memory_bytes();

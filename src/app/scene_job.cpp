@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "app/report.h"
+#include "core/fingerprint.h"
 #include "core/interrupt.h"
 #include "core/memory.h"
 #include "core/progress.h"
@@ -34,6 +35,18 @@ using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 }  // namespace
 
+uint64_t job_fingerprint(const CommandLine& cmd, const SceneJob& job, const Hierarchy& h) {
+  Fingerprint f;
+  f.add(std::string_view(RAD_VERSION)).add(solve_fingerprint(h, cmd.solver, cmd.backend));
+  f.add(cmd.solver.converge).add(cmd.solver.max_shots).add(cmd.solver.time_limit);
+  f.add(cmd.ascii).add(cmd.ambient).add(cmd.tonemap).add(cmd.exposure);
+  f.add(cmd.image_width).add(cmd.image_height).add(cmd.camera.has_value());
+  if (cmd.camera) f.add(*cmd.camera);
+  f.add(std::string_view(job.mesh_output)).add(uint64_t(job.images.size()));
+  for (const std::string& i : job.images) f.add(std::string_view(i));
+  return f.value();
+}
+
 SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job) {
   const auto start = Clock::now();
   Progress progress(cmd.quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);
@@ -53,6 +66,18 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job) {
   say("Reading description file...");
   const Hierarchy hierarchy = build_hierarchy(read_scene_file(job.scene, cmd.model));
   times.parse = since(start);
+  const uint64_t job_id = job.stats_json.empty() ? 0 : job_fingerprint(cmd, job, hierarchy);
+  if (job.skip_if_done && job_id != 0 && read_job_fingerprint(job.stats_json) == job_id) {
+    bool complete = job.mesh_output.empty() || std::filesystem::exists(job.mesh_output);
+    for (const std::string& image : job.images) complete &= std::filesystem::exists(image);
+    if (complete) {
+      say("Outputs complete from an earlier run with the same scene and options: skipped");
+      SceneJobResult r;
+      r.skipped = true;
+      r.seconds = since(start);
+      return r;
+    }
+  }
 
   say("Initializing...");
   const int threads = cmd.threads > 0 ? cmd.threads : tbb::info::default_concurrency();
@@ -153,7 +178,7 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job) {
   times.total = since(start);
   if (!job.stats_json.empty()) {
     write_stats_json(job.stats_json, cmd, job.scene, state, stop, times,
-                     measure_seams(mesh, hierarchy.triangles));
+                     measure_seams(mesh, hierarchy.triangles), job_id);
   }
   if (!cmd.quiet) std::fputs(format_statistics(state, times.total).c_str(), stdout);
   return {stop, state.shots, count_vertices(state.mesh), state.unshot_fraction(), times.total};

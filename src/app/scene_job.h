@@ -15,6 +15,9 @@ struct SceneJob {
   std::string mesh_output;          // empty: no mesh file
   std::vector<std::string> images;  // rendered with the command line's camera and size
   std::string stats_json;           // empty: none
+  // rad batch: when the stats file carries this job's fingerprint (written last, after every
+  // other output) and every output exists, the scene is not solved again.
+  bool skip_if_done = false;
 };
 
 struct SceneJobResult {
@@ -23,7 +26,13 @@ struct SceneJobResult {
   size_t vertices = 0;
   double unshot_fraction = 0.0;
   double seconds = 0.0;
+  bool skipped = false;  // skip_if_done found the outputs complete
 };
+
+/// What a job's outputs depend on: the solve's fingerprint (scene geometry, hierarchy,
+/// materials, flags, every option that changes the answer, backend), the stop criteria, the
+/// output options and paths, and rad's version.
+uint64_t job_fingerprint(const CommandLine& cmd, const SceneJob& job, const Hierarchy& h);
 
 /// Runs `job` with the options of `cmd`, printing the original's stage lines and statistics
 /// unless quiet. Every output is checked before solving and written atomically. Throws

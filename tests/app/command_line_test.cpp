@@ -14,6 +14,9 @@
 #include <regex>
 #include <sstream>
 
+#include "app/cli.h"
+#include "core/error.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -160,6 +163,30 @@ bool complete_ply(const fs::path& p, size_t* vertices) {
   std::sscanf(data.c_str() + data.find("element face"), "element face %zu", &f);
   *vertices = v;
   return data.size() == end + 11 + v * 27 + f * 13;  // 3+3 floats+3 bytes; 1 byte + 3 uints
+}
+
+TEST(CommandLine, ShardIsIOfNOrTheSlurmArrayTask) {
+  int i = -1, n = -1;
+  rad::parse_shard("1/3", &i, &n);
+  EXPECT_EQ(i, 1);
+  EXPECT_EQ(n, 3);
+  for (const char* bad : {"3/3", "-1/2", "1/0", "1", "1/2x", "a/b"}) {
+    EXPECT_THROW(rad::parse_shard(bad, &i, &n), rad::Error) << bad;
+  }
+  // sbatch --array=1-4: task ids 1..4, shard ids 0..3.
+  setenv("SLURM_ARRAY_TASK_ID", "3", 1);
+  setenv("SLURM_ARRAY_TASK_MIN", "1", 1);
+  setenv("SLURM_ARRAY_TASK_COUNT", "4", 1);
+  rad::parse_shard("slurm", &i, &n);
+  EXPECT_EQ(i, 2);
+  EXPECT_EQ(n, 4);
+  unsetenv("SLURM_ARRAY_TASK_ID");
+  EXPECT_THROW(rad::parse_shard("slurm", &i, &n), rad::Error);
+  unsetenv("SLURM_ARRAY_TASK_MIN");
+  unsetenv("SLURM_ARRAY_TASK_COUNT");
+  const RadRun r = run_rad("batch /tmp/rad_test_shard x.des --shard 2/2");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("--shard: error: expected I/N with 0 <= I < N"), std::string::npos) << r.err;
 }
 
 TEST(CommandLine, BatchWritesTheGoodScenesAndReportsTheBrokenOne) {
