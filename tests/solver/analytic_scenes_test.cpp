@@ -10,11 +10,7 @@
 namespace rad {
 namespace {
 
-struct Solved {
-  Hierarchy h;
-  std::unique_ptr<VisibilityBackend> vis;
-  SolverState s;
-};
+using testing::Solved;
 
 std::unique_ptr<Solved> solve_scene(const SceneDescription& d, BackendKind kind,
                                     SolverOptions o = {}) {

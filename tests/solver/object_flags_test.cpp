@@ -7,16 +7,13 @@
 #include <string>
 
 #include "scene/parser.h"
+#include "scene_builder.h"
 #include "solver/solver.h"
 
 namespace rad {
 namespace {
 
-struct Solved {
-  Hierarchy h;
-  std::unique_ptr<VisibilityBackend> vis;
-  SolverState s;
-};
+using testing::Solved;
 
 // A 4 x 4 floor (y = 0, facing up) under a 2 x 2 light (y = 2, facing down), and a black 1 x 1
 // card: at y = 1 over the middle of the floor (`card_flags` on it), or, with `card_away`, in the
@@ -38,7 +35,7 @@ std::string scene(const std::string& floor_flags, const std::string& light_flags
          "  Data { " + card + " } }\n";
 }
 
-class ObjectFlags : public testing::TestWithParam<BackendKind> {
+class FlaggedScene : public ::testing::TestWithParam<BackendKind> {
  protected:
   std::unique_ptr<Solved> solve_text(const std::string& text) {
     auto r = std::make_unique<Solved>();
@@ -85,23 +82,23 @@ float shadowed_minimum(const Solved& r) {
   return least;
 }
 
-TEST_P(ObjectFlags, TheCardCastsAShadowByDefault) {
+TEST_P(FlaggedScene, TheCardCastsAShadowByDefault) {
   const auto shadowed = solve_text(scene("", "", "", false));
   const auto open = solve_text(scene("", "", "", true));
   EXPECT_LT(shadowed_minimum(*shadowed), 0.5f * shadowed_minimum(*open));
 }
 
-TEST_P(ObjectFlags, AnObjectThatCastsNoShadowsIsInvisibleToShadowRays) {
+TEST_P(FlaggedScene, AnObjectThatCastsNoShadowsIsInvisibleToShadowRays) {
   expect_same_floor(*solve_text(scene("", "", "CastsShadows No", false)),
                     *solve_text(scene("", "", "", true)));
 }
 
-TEST_P(ObjectFlags, AnObjectThatReceivesNoShadowsTakesEveryVisibilityTermAsOne) {
+TEST_P(FlaggedScene, AnObjectThatReceivesNoShadowsTakesEveryVisibilityTermAsOne) {
   expect_same_floor(*solve_text(scene("ReceivesShadows No", "", "", false)),
                     *solve_text(scene("", "", "", true)));
 }
 
-TEST_P(ObjectFlags, AnObjectWithALightsListLightsOnlyItselfAndWhatItLists) {
+TEST_P(FlaggedScene, AnObjectWithALightsListLightsOnlyItselfAndWhatItLists) {
   const auto listed = solve_text(scene("", "Lights { \"floor\" }", "", true));
   const auto all = solve_text(scene("", "", "", true));
   for (const auto& [x, h] : vertices_of(*listed, "other floor")) {
@@ -113,15 +110,15 @@ TEST_P(ObjectFlags, AnObjectWithALightsListLightsOnlyItselfAndWhatItLists) {
   expect_same_floor(*listed, *all);
 }
 
-TEST_P(ObjectFlags, AGroupsFlagsHoldForEverythingInside) {
+TEST_P(FlaggedScene, AGroupsFlagsHoldForEverythingInside) {
   const std::string text =
       "\"nested\"\nObject \"room\" Assembly CastsShadows No {\n" +
       scene("", "", "", false).substr(std::string("\"flags\"\n").size()) + "}\n";
   expect_same_floor(*solve_text(text), *solve_text(scene("", "", "", true)));
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryBackend, ObjectFlags,
-                         testing::Values(BackendKind::Embree, BackendKind::Grid,
+INSTANTIATE_TEST_SUITE_P(EveryBackend, FlaggedScene,
+                         ::testing::Values(BackendKind::Embree, BackendKind::Grid,
                                          BackendKind::Brute),
                          [](const auto& info) { return std::string(to_string(info.param)); });
 

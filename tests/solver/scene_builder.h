@@ -1,10 +1,20 @@
 // Scenes made of quads, built in code for solver tests.
 #pragma once
 
+#include <memory>
+
 #include "hierarchy/hierarchy.h"
 #include "scene/description.h"
+#include "solver/solver_state.h"
 
 namespace rad::testing {
+
+/// A solved scene: the hierarchy, its backend and the solver state that points into both.
+struct Solved {
+  Hierarchy h;
+  std::unique_ptr<VisibilityBackend> vis;
+  SolverState s;
+};
 
 /// Appends a Pure made of the quad a b c d (two triangles a b c, a c d; front by the right-hand
 /// rule), cut into k x k quads.

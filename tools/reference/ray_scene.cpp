@@ -78,17 +78,16 @@ void fill_ray(RTCRay& ray, const Vec3& origin, const Vec3& dir, float tfar) {
   ray.id = 0;
   ray.flags = 0;
 }
-}  // namespace
 
-RayHit RayScene::intersect(const Vec3& origin, const Vec3& dir, float tfar) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+// The nearest hit that `context` (and its filter, if any) accepts.
+RayHit closest_hit(RTCScene scene, RTCIntersectContext* context, const Vec3& origin,
+                   const Vec3& dir, float tfar) {
   RTCRayHit rh;
   fill_ray(rh.ray, origin, dir, tfar);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(impl_->scene, &context, &rh);
+  rtcIntersect1(scene, context, &rh);
   RayHit hit;
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
   hit.triangle = int32_t(rh.hit.primID);
@@ -96,6 +95,13 @@ RayHit RayScene::intersect(const Vec3& origin, const Vec3& dir, float tfar) cons
   hit.u = rh.hit.u;
   hit.v = rh.hit.v;
   return hit;
+}
+}  // namespace
+
+RayHit RayScene::intersect(const Vec3& origin, const Vec3& dir, float tfar) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  return closest_hit(impl_->scene, &context, origin, dir, tfar);
 }
 
 namespace {
@@ -125,19 +131,7 @@ RayHit RayScene::intersect_front(const Vec3& origin, const Vec3& dir, float tfar
   rtcInitIntersectContext(&fc.context);
   fc.context.filter = front_faces_only;
   fc.normals = impl_->normals.data();
-  RTCRayHit rh;
-  fill_ray(rh.ray, origin, dir, tfar);
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(impl_->scene, &fc.context, &rh);
-  RayHit hit;
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
-  hit.triangle = int32_t(rh.hit.primID);
-  hit.t = rh.ray.tfar;
-  hit.u = rh.hit.u;
-  hit.v = rh.hit.v;
-  return hit;
+  return closest_hit(impl_->scene, &fc.context, origin, dir, tfar);
 }
 
 bool RayScene::occluded(const Vec3& origin, const Vec3& dir, float tfar) const {
