@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/matrix.hpp>
 #include <string_view>
 #include <unordered_map>
 
@@ -14,37 +15,68 @@ namespace {
 struct Builder {
   const SceneDescription& scene;
   Hierarchy& out;
+  BuildLimits limits;
   uint32_t dropped = 0;
 
-  std::vector<int32_t> description_of;  // per hierarchy object
+  std::vector<ObjectFlags> flags_of;  // per hierarchy object: its flags, a copy's merged
 
   // Depth-first: a Pure appends its triangles, so every subtree's triangles are contiguous.
-  int32_t add(int32_t desc_index, int32_t parent) {
-    const ObjectDescription& d = scene.objects[desc_index];
+  // `placement` maps the object's coordinates to the world's.
+  int32_t add(int32_t desc_index, int32_t parent, const glm::dmat4& outer, int depth) {
+    const ObjectDescription& d = scene.objects[size_t(desc_index)];
+    // A copy (of a copy...) is its original's contents under both transforms; its own flags win.
+    glm::dmat4 placement = outer * d.transform;
+    ObjectFlags flags = d.flags;
+    const ObjectDescription* content = &d;
+    while (content->copy_of >= 0) {
+      content = &scene.objects[size_t(content->copy_of)];
+      placement = placement * content->transform;
+      if (!flags.casts_shadows) flags.casts_shadows = content->flags.casts_shadows;
+      if (!flags.receives_shadows) flags.receives_shadows = content->flags.receives_shadows;
+      if (!flags.has_lights) flags.has_lights = content->flags.has_lights, flags.lights = content->flags.lights;
+    }
+    // Copies can nest and multiply: bound the walk and what it makes, not the stack or memory.
+    if (depth > limits.max_depth || out.objects.size() >= limits.max_objects) {
+      throw Error(d.loc, fmt::format("copies of copies make more than {} objects or nest deeper "
+                                     "than {}",
+                                     limits.max_objects, limits.max_depth));
+    }
     int32_t id = static_cast<int32_t>(out.objects.size());
     out.objects.push_back({});
-    description_of.push_back(desc_index);
     {
       SceneObject& o = out.objects.back();
       o.name = d.name;
-      o.kind = d.kind;
+      o.kind = content->kind;
       o.loc = d.loc;
       o.parent = parent;
-      o.material = d.material;
+      o.material = content->material;
       o.first_triangle = static_cast<uint32_t>(out.triangles.size());
-      const SceneObject* up = parent >= 0 ? &out.objects[parent] : nullptr;
-      o.casts_shadows = d.flags.casts_shadows.value_or(up ? up->casts_shadows : true);
-      o.receives_shadows = d.flags.receives_shadows.value_or(up ? up->receives_shadows : true);
-      o.influence = d.flags.has_lights ? id : (up ? up->influence : -1);
+      const SceneObject* up = parent >= 0 ? &out.objects[size_t(parent)] : nullptr;
+      o.casts_shadows = flags.casts_shadows.value_or(up ? up->casts_shadows : true);
+      o.receives_shadows = flags.receives_shadows.value_or(up ? up->receives_shadows : true);
+      o.influence = flags.has_lights ? id : (up ? up->influence : -1);
     }
+    flags_of.push_back(std::move(flags));
+    const bool identity = placement == glm::dmat4(1.0);
+    // A mirroring placement turns every triangle over: swapping two corners keeps its front.
+    const bool mirrored = glm::determinant(placement) < 0.0;
     Aabb box;
-    if (d.kind == ObjectKind::Pure) {
-      for (size_t i = 0; i < d.triangles.size(); ++i) {
-        const auto& t = d.triangles[i];
+    if (content->kind == ObjectKind::Pure) {
+      if (out.triangles.size() + content->triangles.size() > limits.max_triangles) {
+        throw Error(d.loc, fmt::format("the scene places more than {} triangles",
+                                       limits.max_triangles));
+      }
+      for (size_t i = 0; i < content->triangles.size(); ++i) {
+        auto t = content->triangles[i];
+        const SourceLoc& where = i < content->triangle_locs.size() ? content->triangle_locs[i] : d.loc;
+        if (!identity) {
+          for (Vec3& p : t) p = Vec3(DVec3(placement * glm::dvec4(DVec3(p), 1.0)));
+          if (mirrored) std::swap(t[1], t[2]);
+        }
         // The solver's kernels take distances to the fourth power in single precision.
         for (const Vec3& p : t) {
           if (!(max_component(glm::abs(p)) <= kMaxCoordinate)) {
-            throw Error(i < d.triangle_locs.size() ? d.triangle_locs[i] : d.loc,
+            throw Error(where,
                         fmt::format("coordinate {:g} {:g} {:g} of Pure \"{}\" is too large: rad "
                                     "computes in single precision and takes |x|, |y|, |z| up to "
                                     "{:g} (scale the scene down)",
@@ -67,18 +99,18 @@ struct Builder {
         for (const Vec3& p : t) box.extend(p);
       }
     } else {
-      for (int32_t c : d.children) {
-        int32_t child = add(c, id);
-        out.objects[id].children.push_back(child);
-        box.extend(out.objects[child].box);
+      for (int32_t c : content->children) {
+        int32_t child = add(c, id, placement, depth + 1);
+        out.objects[size_t(id)].children.push_back(child);
+        box.extend(out.objects[size_t(child)].box);
       }
     }
-    SceneObject& o = out.objects[id];
+    SceneObject& o = out.objects[size_t(id)];
     o.box = box;
     o.triangle_count = static_cast<uint32_t>(out.triangles.size()) - o.first_triangle;
     if (o.triangle_count == 0) {
       throw Error(d.loc, fmt::format("{} \"{}\" has no triangles of non-zero area",
-                                     to_string(d.kind), d.name));
+                                     to_string(o.kind), d.name));
     }
     return id;
   }
@@ -89,7 +121,7 @@ struct Builder {
     std::unordered_map<std::string_view, std::vector<int32_t>> by_name;
     for (size_t i = 0; i < out.objects.size(); ++i) by_name[out.objects[i].name].push_back(int32_t(i));
     for (size_t i = 0; i < out.objects.size(); ++i) {
-      const ObjectFlags& f = scene.objects[description_of[i]].flags;
+      const ObjectFlags& f = flags_of[i];
       if (!f.has_lights) continue;
       std::vector<TriangleRange> r;
       auto range_of = [&](int32_t o) {
@@ -130,13 +162,13 @@ bool influence_reaches(const Hierarchy& h, int32_t influence, uint32_t t) {
   return it != lit.begin() && t - std::prev(it)->first < std::prev(it)->count;
 }
 
-Hierarchy build_hierarchy(const SceneDescription& scene) {
+Hierarchy build_hierarchy(const SceneDescription& scene, const BuildLimits& limits) {
   Hierarchy h;
   h.scene_name = scene.name;
   h.source_path = scene.path;
-  Builder b{scene, h};
+  Builder b{scene, h, limits};
   for (int32_t r : scene.roots) {
-    int32_t id = b.add(r, -1);
+    int32_t id = b.add(r, -1, glm::dmat4(1.0), 0);
     h.roots.push_back(id);
     h.bounds.extend(h.objects[id].box);
   }

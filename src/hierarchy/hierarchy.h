@@ -60,11 +60,20 @@ struct Hierarchy {
 /// size L), which must stay below 3.4e38.
 inline constexpr float kMaxCoordinate = 1e8f;
 
+/// What copies of copies may make before the build refuses (each copy doubling an object would
+/// otherwise grow exponentially with the file).
+struct BuildLimits {
+  size_t max_triangles = 50'000'000;
+  size_t max_objects = 10'000'000;
+  int max_depth = 256;
+};
+
 /// Builds the hierarchy: computes normals, areas and boxes, drops zero-area triangles (one
 /// warning counting them), orders triangles depth-first, and resolves the per-object flags and
 /// the names in Lights lists (every object of a listed name). Throws rad::Error if an object
-/// ends up empty or a list names no object.
-Hierarchy build_hierarchy(const SceneDescription& scene);
+/// ends up empty or a list names no object. Copies (ObjectDescription::copy_of) are flattened,
+/// transforms applied (a mirroring one keeps each triangle's front); beyond `limits` it throws.
+Hierarchy build_hierarchy(const SceneDescription& scene, const BuildLimits& limits = {});
 
 /// Whether a shooter whose Pure has SceneObject::influence `influence` lights triangle t.
 bool influence_reaches(const Hierarchy& h, int32_t influence, uint32_t t);

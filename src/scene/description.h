@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/mat4x4.hpp>
+
 #include "core/error.h"
 #include "core/math.h"
 
@@ -44,6 +46,12 @@ struct ObjectDescription {
   ObjectKind kind = ObjectKind::Pure;
   SourceLoc loc;                      // where "Object" was written
   ObjectFlags flags;
+  // Placement (SPEC §8): applied to everything below, after the transforms of the objects
+  // inside and before those of the objects around it. Identity unless transforms were given.
+  glm::dmat4 transform{1.0};
+  // A copy of an earlier object (`Copy "name"`): its kind, contents and flags, placed by this
+  // object's transform on top of the original's. Holds no children or triangles itself.
+  int32_t copy_of = -1;
   std::vector<int32_t> children;      // Assembly and Composite only
   Material material;                  // Pure only
   std::vector<std::array<Vec3, 3>> triangles;  // Pure only: corners a, b, c (front: (b-a)x(c-a))

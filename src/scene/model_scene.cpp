@@ -64,7 +64,11 @@ SceneDescription model_to_scene(const Model& m, const ModelOptions& o) {
   bool emits = false;
   for (const ModelGroup& g : m.groups) {
     const int32_t composite = int32_t(d.objects.size());
-    d.objects.push_back({g.name, ObjectKind::Composite, SourceLoc{m.path}, {}, {}, {}, {}});
+    ObjectDescription group;
+    group.name = g.name;
+    group.kind = ObjectKind::Composite;
+    group.loc = SourceLoc{m.path};
+    d.objects.push_back(std::move(group));
     d.objects[0].children.push_back(composite);
     std::vector<int32_t> pure_of(m.materials.size(), -1);
     for (size_t t = 0; t < g.triangles.size(); ++t) {

@@ -2,6 +2,7 @@
 #include "scene/parser.h"
 
 #include <fmt/format.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <array>
@@ -18,10 +19,10 @@ namespace rad {
 
 namespace {
 
-constexpr std::array<std::string_view, 14> kKeywords = {
-    "Object", "Assembly",     "Composite",       "Pure",   "Reflectivity",
-    "Color",  "Emission",     "File",            "Data",   "CastsShadows",
-    "ReceivesShadows", "Lights", "Yes",          "No"};
+constexpr std::array<std::string_view, 18> kKeywords = {
+    "Object",       "Assembly", "Composite", "Pure",      "Reflectivity",    "Color",
+    "Emission",     "File",     "Data",      "Copy",      "CastsShadows",    "ReceivesShadows",
+    "Lights",       "Yes",      "No",        "Translate", "Rotate",          "Scale"};
 constexpr std::array<const char*, 3> kChannels = {"red", "green", "blue"};
 
 bool is_keyword(std::string_view word) {
@@ -148,14 +149,32 @@ class Parser {
     std::string name = expect_string("the object's name (a quoted string)");
     Token kind = tokens_.next();
     ObjectKind k;
-    if (is_word(kind, "Assembly")) {
+    int32_t copy_of = -1;
+    if (is_word(kind, "Copy")) {
+      // Copy "name": the latest complete object of that name (so never one that is open).
+      const Token original = tokens_.next();
+      if (original.kind != TokenKind::String) {
+        fail_expected(original, "the name of the object to copy (a quoted string)", false);
+      }
+      for (size_t i = scene_.objects.size(); i-- > 0;) {
+        if (complete_[i] && scene_.objects[i].name == original.text) {
+          copy_of = int32_t(i);
+          break;
+        }
+      }
+      if (copy_of < 0) {
+        throw Error(original.loc, "no object \"" + original.text + "\" is defined before this copy");
+      }
+      k = scene_.objects[size_t(copy_of)].kind;
+    } else if (is_word(kind, "Assembly")) {
       k = ObjectKind::Assembly;
     } else if (is_word(kind, "Composite")) {
       k = ObjectKind::Composite;
     } else if (is_word(kind, "Pure")) {
       k = ObjectKind::Pure;
     } else {
-      fail_expected(kind, in_composite ? "'Pure'" : "'Assembly', 'Composite' or 'Pure'", true);
+      fail_expected(kind, in_composite ? "'Pure' or 'Copy'" : "'Assembly', 'Composite', 'Pure' or 'Copy'",
+                    true);
     }
     if (in_composite && k != ObjectKind::Pure) {
       throw Error(kind.loc, "a Composite holds only Pures, but \"" + name + "\" is " +
@@ -166,8 +185,14 @@ class Parser {
     d.name = name;
     d.kind = k;
     d.loc = object.loc;
-    d.flags = parse_flags();
+    d.copy_of = copy_of;
+    d.flags = parse_flags(d.transform, /*body=*/copy_of < 0);
     scene_.objects.push_back(std::move(d));
+    complete_.push_back(0);
+    if (copy_of >= 0) {
+      complete_[size_t(id)] = 1;
+      return id;
+    }
     switch (k) {
       case ObjectKind::Assembly:
         parse_group(id, /*pures_only=*/false);
@@ -179,15 +204,22 @@ class Parser {
         parse_pure(id);
         break;
     }
+    complete_[size_t(id)] = 1;
     return id;
   }
 
   // Flags ::= Flag Flags | (nothing)
   // Flag  ::= "CastsShadows" YesNo | "ReceivesShadows" YesNo | "Lights" "{" Strings "}"
-  ObjectFlags parse_flags() {
+  //         | "Translate" Vector | "Rotate" Vector Real | "Scale" (Real | Vector)
+  // Transforms compose in the order written into `transform`. With `body`, a '{' must follow.
+  ObjectFlags parse_flags(glm::dmat4& transform, bool body) {
     ObjectFlags f;
     for (;;) {
       const Token& t = tokens_.peek();
+      if (is_word(t, "Translate") || is_word(t, "Rotate") || is_word(t, "Scale")) {
+        transform = parse_transform() * transform;
+        continue;
+      }
       if (is_word(t, "CastsShadows") || is_word(t, "ReceivesShadows")) {
         const Token flag = tokens_.next();
         std::optional<bool>& slot =
@@ -212,12 +244,40 @@ class Parser {
         }
         tokens_.next();
       } else {
-        if (!is_symbol(t, '{')) {
-          fail_expected(t, "'CastsShadows', 'ReceivesShadows', 'Lights' or '{'", true);
+        if (body && !is_symbol(t, '{')) {
+          fail_expected(t, "a transform, 'CastsShadows', 'ReceivesShadows', 'Lights' or '{'",
+                        true);
         }
         return f;
       }
     }
+  }
+
+  // One transform, as a matrix.
+  glm::dmat4 parse_transform() {
+    const Token op = tokens_.next();
+    std::array<Token, 3> where;
+    if (op.text == "Translate") {
+      return glm::translate(glm::dmat4(1.0), expect_vector("the translation", where));
+    }
+    if (op.text == "Rotate") {
+      const DVec3 axis = expect_vector("the rotation's axis", where);
+      if (!(glm::length(axis) > 0.0)) throw Error(where[0].loc, "the rotation's axis is zero");
+      Token angle;
+      const double degrees = expect_number("the rotation's angle in degrees", angle);
+      return glm::rotate(glm::dmat4(1.0), glm::radians(degrees), glm::normalize(axis));
+    }
+    DVec3 scale;
+    if (is_symbol(tokens_.peek(), '<')) {
+      scale = expect_vector("the scale factors", where);
+    } else {
+      scale = DVec3(expect_number("the scale factor (a number or a vector)", where[0]));
+      where[1] = where[2] = where[0];
+    }
+    for (int k = 0; k < 3; ++k) {
+      if (!(scale[k] != 0.0)) throw Error(where[size_t(k)].loc, "a scale factor of 0 flattens the object");
+    }
+    return glm::scale(glm::dmat4(1.0), scale);
   }
 
   // Assembly ::= "Assembly" "{" Composition "}";  Composite ::= "Composite" "{" Objects "}"
@@ -339,6 +399,7 @@ class Parser {
   }
 
   Tokenizer tokens_;
+  std::vector<char> complete_;  // per object: parsed to its end (a copy may name it)
   int depth_ = 0;  // objects open around the one being parsed
   static constexpr int kMaxNesting = 256;  // real scenes nest a few deep; ASan frames are large
   SceneDescription scene_;

@@ -194,5 +194,60 @@ Object "a" Pure Lights { "nobody" } { Reflectivity 0 Color <1 1 1> Emission 1
   }
 }
 
+const char* kPlaced = R"("placed"
+Object "leg" Pure { Reflectivity 0.5 Color <1 1 1> Emission 0 Data { <0 0 0> <1 0 0> <0 1 0> } }
+Object "chair" Composite Translate <10 0 0> {
+  Object "seat" Pure Scale 2 { Reflectivity 0.5 Color <1 1 1> Emission 0
+    Data { <0 0 0> <1 0 0> <0 1 0> } }
+  Object "leg 2" Copy "leg" Translate <0 0 5>
+}
+Object "chair 2" Copy "chair" Rotate <0 0 1> 90
+Object "mirror" Copy "leg" Scale <-1 1 1>
+)";
+
+TEST(Hierarchy, TransformsComposeDownTheTreeInTheOrderWritten) {
+  Hierarchy h = build(kPlaced);
+  // leg, chair, seat, leg 2, chair 2, seat, leg 2, mirror
+  ASSERT_EQ(h.objects.size(), 8u);
+  ASSERT_EQ(h.triangles.size(), 6u);
+  auto near = [](Vec3 a, Vec3 b) { return glm::length(a - b) < 1e-5f; };
+  // seat: scaled by 2, then moved with its chair.
+  EXPECT_TRUE(near(h.triangles.corners[1][1], Vec3(12, 0, 0)));
+  // leg 2 in the chair: the leg moved by its own translation, then by the chair's.
+  EXPECT_TRUE(near(h.triangles.corners[2][2], Vec3(10, 1, 5)));
+  // chair 2: the whole chair turned 90 degrees about z, after the chair's own placement.
+  EXPECT_EQ(h.objects[4].name, "chair 2");
+  EXPECT_EQ(h.objects[4].kind, ObjectKind::Composite);
+  EXPECT_EQ(h.objects[5].name, "seat");
+  EXPECT_TRUE(near(h.triangles.corners[3][1], Vec3(0, 12, 0)));
+  EXPECT_TRUE(near(h.triangles.corners[4][2], Vec3(-1, 10, 5)));
+  EXPECT_TRUE(near(h.triangles.normal[3], Vec3(0, 0, 1)));
+}
+
+TEST(Hierarchy, AMirroringCopyKeepsEveryTrianglesFront) {
+  Hierarchy h = build(kPlaced);
+  const auto& t = h.triangles.corners[5];
+  // Mirrored in x, the leg's corners would turn its front to -z; swapped, it still faces +z.
+  EXPECT_EQ(h.objects[7].name, "mirror");
+  EXPECT_NEAR(h.triangles.normal[5].z, 1.0f, 1e-6f);
+  EXPECT_NEAR(std::min({t[0].x, t[1].x, t[2].x}), -1.0f, 1e-6f);
+}
+
+TEST(Hierarchy, CopiesThatMultiplyBeyondTheLimitsAreRefused) {
+  std::string text = "\"s\"\nObject \"c0\" Pure { Reflectivity 0 Color <1 1 1> Emission 1 Data "
+                     "{ <0 0 0> <1 0 0> <0 1 0> } }\n";
+  for (int i = 1; i <= 30; ++i) {  // each level doubles: 2^30 triangles
+    text += "Object \"c" + std::to_string(i) + "\" Assembly { Object \"a\" Copy \"c" +
+            std::to_string(i - 1) + "\" Object \"b\" Copy \"c" + std::to_string(i - 1) +
+            "\" Translate <1 0 0> }\n";
+  }
+  try {
+    build_hierarchy(parse_scene_text(text, "scene.des"), BuildLimits{1000, 100000, 256});
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("more than 1000 triangles"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace rad

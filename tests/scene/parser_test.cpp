@@ -8,6 +8,8 @@
 #include <fstream>
 #include <string>
 
+#include <glm/mat4x4.hpp>
+
 namespace rad {
 namespace {
 
@@ -282,6 +284,33 @@ TEST(Parser, ReportsBadObjectFlags) {
                "keywords are case-sensitive: 'ReceivesShadows'");
 }
 
+TEST(Parser, ACopyNamesAnEarlierObjectAndKeepsOnlyItsPlacement) {
+  SceneDescription d = parse_scene_text(
+      "\"s\"\n" + pure("lamp") + "Object \"lamp 2\" Copy \"lamp\" Translate <1 2 3> Scale 2\n" +
+          "Object \"w\" Pure Rotate <0 1 0> 90 " + pure("x").substr(pure("x").find('{')),
+      "scene.des");
+  ASSERT_EQ(d.objects.size(), 3u);
+  const ObjectDescription& copy = d.objects[1];
+  EXPECT_EQ(copy.copy_of, 0);
+  EXPECT_EQ(copy.kind, ObjectKind::Pure);
+  EXPECT_TRUE(copy.triangles.empty());
+  // Written order: translate, then scale (of the translated object).
+  const glm::dvec4 p = copy.transform * glm::dvec4(0, 0, 0, 1);
+  EXPECT_EQ(glm::dvec3(p), glm::dvec3(2, 4, 6));
+  const glm::dvec4 q = d.objects[2].transform * glm::dvec4(1, 0, 0, 1);
+  EXPECT_NEAR(q.z, -1.0, 1e-12);
+}
+
+TEST(Parser, ReportsBadCopiesAndTransforms) {
+  expect_error("\"s\"\nObject \"a\" Copy \"b\"", 2, 17, "no object \"b\" is defined before");
+  // An object still open cannot be copied into itself.
+  expect_error("\"s\"\nObject \"a\" Assembly { Object \"b\" Copy \"a\" }", 2, 39,
+               "no object \"a\" is defined before");
+  expect_error("\"s\"\nObject \"w\" Pure Rotate <0 0 0> 30 {", 2, 25, "the rotation's axis is zero");
+  expect_error("\"s\"\nObject \"w\" Pure Scale <1 0 1> {", 2, 26, "a scale factor of 0");
+  expect_error("\"s\"\nObject \"w\" Pure Translate 1 {", 2, 27, "expected '<' starting the translation");
+}
+
 TEST(Parser, FormatsErrorsAsPathLineColumn) {
   Error e = parse_error("\"s\"\nObject \"w\" Pure { Reflectivity 0.5 Color <1 1 1>\n  Object");
   EXPECT_STREQ(e.what(), "scene.des:3:3: error: expected 'Emission' but found 'Object'");
@@ -294,7 +323,7 @@ TEST(Parser, ReportsLineOfUnknownKeyword) {
 
 TEST(Parser, ReportsUnknownObjectKind) {
   expect_error("\"s\"\nObject \"w\" Group {", 2, 12,
-               "unknown keyword 'Group': expected 'Assembly', 'Composite' or 'Pure'");
+               "unknown keyword 'Group': expected 'Assembly', 'Composite', 'Pure' or 'Copy'");
 }
 
 TEST(Parser, ReportsKeywordsAreCaseSensitive) {
