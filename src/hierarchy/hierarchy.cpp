@@ -18,10 +18,10 @@ struct Builder {
   BuildLimits limits;
   uint32_t dropped = 0;
 
-  std::vector<ObjectFlags> flags_of;  // per hierarchy object: its flags, a copy's merged
+  std::vector<ObjectFlags> flags_of{};  // per hierarchy object: its flags, a copy's merged
 
   // Depth-first: a Pure appends its triangles, so every subtree's triangles are contiguous.
-  // `placement` maps the object's coordinates to the world's.
+  // `outer` maps the parent's coordinates to the world's.
   int32_t add(int32_t desc_index, int32_t parent, const glm::dmat4& outer, int depth) {
     const ObjectDescription& d = scene.objects[size_t(desc_index)];
     // A copy (of a copy...) is its original's contents under both transforms; its own flags win.
