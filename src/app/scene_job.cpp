@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "app/report.h"
+#include "core/atomic_file.h"
 #include "core/fingerprint.h"
 #include "core/interrupt.h"
 #include "core/memory.h"
@@ -89,6 +90,7 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job) {
 
   const uint64_t fingerprint =
       cmd.checkpoint.empty() ? 0 : solve_fingerprint(hierarchy, cmd.solver, cmd.backend);
+  if (!cmd.checkpoint.empty()) remove_stale_temporaries(cmd.checkpoint);
   if (!cmd.checkpoint.empty() && std::filesystem::exists(cmd.checkpoint)) {
     read_checkpoint(cmd.checkpoint, state, fingerprint);
     say(fmt::format("Resuming from checkpoint {} ({} shots done)", cmd.checkpoint, state.shots));

@@ -31,4 +31,8 @@ class AtomicFile {
   bool durable_ = false;
 };
 
+/// Removes "<path>.tmp-<pid>" files that no running process owns: what a run killed while
+/// writing `path` (kill -9) left behind.
+void remove_stale_temporaries(const std::string& path);
+
 }  // namespace rad

@@ -45,5 +45,21 @@ TEST(AtomicFile, TheOldFileStaysUntilCommitAndNoTemporaryRemains) {
   fs::remove_all(dir);
 }
 
+TEST(AtomicFile, StaleTemporariesOfDeadRunsAreRemovedAndLiveOnesKept) {
+  const fs::path dir = fs::temp_directory_path() / ("rad_stale_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const fs::path target = dir / "run.ckpt";
+  // A pid beyond any the kernel hands out (pid_max is at most 2^22): its writer is gone.
+  const fs::path dead = dir / "run.ckpt.tmp-99999999";
+  const fs::path live = dir / ("run.ckpt.tmp-" + std::to_string(getpid()));
+  const fs::path other = dir / "other.ckpt.tmp-99999999";
+  for (const fs::path& p : {dead, live, other}) std::ofstream(p) << "x";
+  remove_stale_temporaries(target.string());
+  EXPECT_FALSE(fs::exists(dead));
+  EXPECT_TRUE(fs::exists(live));
+  EXPECT_TRUE(fs::exists(other));
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace rad
