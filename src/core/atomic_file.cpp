@@ -15,6 +15,9 @@
 namespace rad {
 
 namespace {
+// "<path>.tmp-<pid>": the writer's pid tells a live writer from one that died.
+constexpr const char* kTemporaryTag = ".tmp-";
+
 void sync_path(const std::string& p, const std::string& name) {
   const int fd = ::open(p.c_str(), O_RDONLY | O_CLOEXEC);
   const bool ok = fd >= 0 && ::fsync(fd) == 0;
@@ -27,7 +30,7 @@ void remove_stale_temporaries(const std::string& path) {
   namespace fs = std::filesystem;
   const fs::path target(path);
   const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  const std::string prefix = target.filename().string() + ".tmp-";
+  const std::string prefix = target.filename().string() + kTemporaryTag;
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(folder, ec)) {
     const std::string name = e.path().filename().string();
@@ -41,7 +44,7 @@ void remove_stale_temporaries(const std::string& path) {
 }
 
 AtomicFile::AtomicFile(std::string path)
-    : path_(std::move(path)), temp_(path_ + ".tmp-" + std::to_string(getpid())) {
+    : path_(std::move(path)), temp_(path_ + kTemporaryTag + std::to_string(getpid())) {
   out_.open(temp_, std::ios::binary | std::ios::trunc);
   if (!out_) {
     throw Error(SourceLoc{path_}, std::string("cannot write: ") + std::strerror(errno));

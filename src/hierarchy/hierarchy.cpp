@@ -25,12 +25,12 @@ struct Builder {
   int32_t add(int32_t desc_index, int32_t parent, const glm::dmat4& outer, int depth) {
     const ObjectDescription& d = scene.objects[size_t(desc_index)];
     // A copy (of a copy...) is its original's contents under both transforms; its own flags win.
-    glm::dmat4 placement = outer * d.transform;
+    glm::dmat4 placement = outer * transform_matrix(d.transforms);
     ObjectFlags flags = d.flags;
     const ObjectDescription* content = &d;
     while (content->copy_of >= 0) {
       content = &scene.objects[size_t(content->copy_of)];
-      placement = placement * content->transform;
+      placement = placement * transform_matrix(content->transforms);
       if (!flags.casts_shadows) flags.casts_shadows = content->flags.casts_shadows;
       if (!flags.receives_shadows) flags.receives_shadows = content->flags.receives_shadows;
       if (!flags.has_lights) flags.has_lights = content->flags.has_lights, flags.lights = content->flags.lights;

@@ -40,15 +40,27 @@ struct ObjectFlags {
   std::vector<NamedObject> lights;       // itself and these objects (with all below them)
 };
 
+/// One placement step as written: Translate <v>, Rotate <axis> degrees, or Scale <v> (a
+/// uniform Scale s is <s s s>).
+struct Transform {
+  enum class Kind : uint8_t { Translate, Rotate, Scale };
+  Kind kind = Kind::Translate;
+  DVec3 v{0.0};          // the translation, the rotation's axis, or the scale factors
+  double degrees = 0.0;  // Rotate only
+};
+
+/// The matrix of transforms applied in the order written (the first is applied first).
+glm::dmat4 transform_matrix(const std::vector<Transform>& transforms);
+
 /// One object of the description. Children index SceneDescription::objects.
 struct ObjectDescription {
   std::string name;
   ObjectKind kind = ObjectKind::Pure;
   SourceLoc loc;                      // where "Object" was written
   ObjectFlags flags;
-  // Placement (SPEC §8): applied to everything below, after the transforms of the objects
-  // inside and before those of the objects around it. Identity unless transforms were given.
-  glm::dmat4 transform{1.0};
+  // Placement (SPEC §8), as written: applied to everything below, after the transforms of the
+  // objects inside and before those of the objects around it.
+  std::vector<Transform> transforms;
   // A copy of an earlier object (`Copy "name"`): its kind, contents and flags, placed by this
   // object's transform on top of the original's. Holds no children or triangles itself.
   int32_t copy_of = -1;

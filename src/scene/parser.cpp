@@ -2,7 +2,6 @@
 #include "scene/parser.h"
 
 #include <fmt/format.h>
-#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <array>
@@ -186,7 +185,7 @@ class Parser {
     d.kind = k;
     d.loc = object.loc;
     d.copy_of = copy_of;
-    d.flags = parse_flags(d.transform, /*body=*/copy_of < 0);
+    d.flags = parse_flags(d.transforms, /*body=*/copy_of < 0);
     scene_.objects.push_back(std::move(d));
     complete_.push_back(0);
     if (copy_of >= 0) {
@@ -211,13 +210,13 @@ class Parser {
   // Flags ::= Flag Flags | (nothing)
   // Flag  ::= "CastsShadows" YesNo | "ReceivesShadows" YesNo | "Lights" "{" Strings "}"
   //         | "Translate" Vector | "Rotate" Vector Real | "Scale" (Real | Vector)
-  // Transforms compose in the order written into `transform`. With `body`, a '{' must follow.
-  ObjectFlags parse_flags(glm::dmat4& transform, bool body) {
+  // Transforms are kept in the order written. With `body`, a '{' must follow.
+  ObjectFlags parse_flags(std::vector<Transform>& transforms, bool body) {
     ObjectFlags f;
     for (;;) {
       const Token& t = tokens_.peek();
       if (is_word(t, "Translate") || is_word(t, "Rotate") || is_word(t, "Scale")) {
-        transform = parse_transform() * transform;
+        transforms.push_back(parse_transform());
         continue;
       }
       if (is_word(t, "CastsShadows") || is_word(t, "ReceivesShadows")) {
@@ -253,31 +252,34 @@ class Parser {
     }
   }
 
-  // One transform, as a matrix.
-  glm::dmat4 parse_transform() {
+  // One transform, checked.
+  Transform parse_transform() {
     const Token op = tokens_.next();
     std::array<Token, 3> where;
+    Transform t;
     if (op.text == "Translate") {
-      return glm::translate(glm::dmat4(1.0), expect_vector("the translation", where));
+      t.v = expect_vector("the translation", where);
+      return t;
     }
     if (op.text == "Rotate") {
-      const DVec3 axis = expect_vector("the rotation's axis", where);
-      if (!(glm::length(axis) > 0.0)) throw Error(where[0].loc, "the rotation's axis is zero");
+      t.kind = Transform::Kind::Rotate;
+      t.v = expect_vector("the rotation's axis", where);
+      if (!(glm::length(t.v) > 0.0)) throw Error(where[0].loc, "the rotation's axis is zero");
       Token angle;
-      const double degrees = expect_number("the rotation's angle in degrees", angle);
-      return glm::rotate(glm::dmat4(1.0), glm::radians(degrees), glm::normalize(axis));
+      t.degrees = expect_number("the rotation's angle in degrees", angle);
+      return t;
     }
-    DVec3 scale;
+    t.kind = Transform::Kind::Scale;
     if (is_symbol(tokens_.peek(), '<')) {
-      scale = expect_vector("the scale factors", where);
+      t.v = expect_vector("the scale factors", where);
     } else {
-      scale = DVec3(expect_number("the scale factor (a number or a vector)", where[0]));
+      t.v = DVec3(expect_number("the scale factor (a number or a vector)", where[0]));
       where[1] = where[2] = where[0];
     }
     for (int k = 0; k < 3; ++k) {
-      if (!(scale[k] != 0.0)) throw Error(where[size_t(k)].loc, "a scale factor of 0 flattens the object");
+      if (!(t.v[k] != 0.0)) throw Error(where[size_t(k)].loc, "a scale factor of 0 flattens the object");
     }
-    return glm::scale(glm::dmat4(1.0), scale);
+    return t;
   }
 
   // Assembly ::= "Assembly" "{" Composition "}";  Composite ::= "Composite" "{" Objects "}"

@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <sstream>
 #include <string>
 
 #include "scene/parser.h"
+#include "scenegen/scenegen.h"
 
 namespace rad {
 namespace {
@@ -246,6 +248,24 @@ TEST(Hierarchy, CopiesThatMultiplyBeyondTheLimitsAreRefused) {
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("more than 1000 triangles"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Hierarchy, CopiesTransformsAndFlagsSurviveWritingTheDescriptionBack) {
+  // rad-tessellate and rad-gen write descriptions back: the copies stay copies, placed alike.
+  const SceneDescription d = parse_scene_text(kPlaced, "scene.des");
+  std::ostringstream text;
+  write_description(d, text);
+  const SceneDescription again = parse_scene_text(text.str(), "again.des");
+  EXPECT_EQ(again.objects[4].copy_of, 1) << text.str();
+  const Hierarchy a = build_hierarchy(d), b = build_hierarchy(again);
+  ASSERT_EQ(a.triangles.size(), b.triangles.size());
+  for (size_t t = 0; t < a.triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_LT(glm::length(a.triangles.corners[t][size_t(k)] - b.triangles.corners[t][size_t(k)]),
+                1e-5f)
+          << t;
+    }
   }
 }
 

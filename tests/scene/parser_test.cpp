@@ -295,9 +295,12 @@ TEST(Parser, ACopyNamesAnEarlierObjectAndKeepsOnlyItsPlacement) {
   EXPECT_EQ(copy.kind, ObjectKind::Pure);
   EXPECT_TRUE(copy.triangles.empty());
   // Written order: translate, then scale (of the translated object).
-  const glm::dvec4 p = copy.transform * glm::dvec4(0, 0, 0, 1);
+  ASSERT_EQ(copy.transforms.size(), 2u);
+  EXPECT_EQ(copy.transforms[1].kind, Transform::Kind::Scale);
+  EXPECT_EQ(copy.transforms[1].v, DVec3(2.0));
+  const glm::dvec4 p = transform_matrix(copy.transforms) * glm::dvec4(0, 0, 0, 1);
   EXPECT_EQ(glm::dvec3(p), glm::dvec3(2, 4, 6));
-  const glm::dvec4 q = d.objects[2].transform * glm::dvec4(1, 0, 0, 1);
+  const glm::dvec4 q = transform_matrix(d.objects[2].transforms) * glm::dvec4(1, 0, 0, 1);
   EXPECT_NEAR(q.z, -1.0, 1e-12);
 }
 

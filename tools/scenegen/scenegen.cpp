@@ -386,7 +386,22 @@ void write_description(const SceneDescription& scene, std::ostream& out) {
   auto write = [&](auto&& self, int32_t id, int depth) -> void {
     const ObjectDescription& o = scene.objects[id];
     std::string pad(2 * depth, ' ');
-    out << pad << "Object \"" << o.name << "\" " << to_string(o.kind);
+    out << pad << "Object \"" << o.name << "\" ";
+    if (o.copy_of >= 0) {  // the latest complete object of that name, as when it was parsed
+      out << "Copy \"" << scene.objects[size_t(o.copy_of)].name << '"';
+    } else {
+      out << to_string(o.kind);
+    }
+    for (const Transform& t : o.transforms) {
+      const auto v = [](const DVec3& d) {
+        return fmt::format("<{:.17g} {:.17g} {:.17g}>", d.x, d.y, d.z);
+      };
+      switch (t.kind) {
+        case Transform::Kind::Translate: out << " Translate " << v(t.v); break;
+        case Transform::Kind::Rotate: out << " Rotate " << v(t.v) << fmt::format(" {:.17g}", t.degrees); break;
+        case Transform::Kind::Scale: out << " Scale " << v(t.v); break;
+      }
+    }
     const ObjectFlags& f = o.flags;
     if (f.casts_shadows) out << " CastsShadows " << (*f.casts_shadows ? "Yes" : "No");
     if (f.receives_shadows) out << " ReceivesShadows " << (*f.receives_shadows ? "Yes" : "No");
@@ -394,6 +409,10 @@ void write_description(const SceneDescription& scene, std::ostream& out) {
       out << " Lights {";
       for (const NamedObject& n : f.lights) out << " \"" << n.name << '"';
       out << " }";
+    }
+    if (o.copy_of >= 0) {
+      out << "\n";
+      return;
     }
     out << " {\n";
     if (o.kind == ObjectKind::Pure) {

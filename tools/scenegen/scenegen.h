@@ -60,8 +60,9 @@ SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess
 std::vector<std::array<Vec3, 3>> tessellate_triangles(const std::vector<std::array<Vec3, 3>>& in,
                                                       int k);
 
-/// Writes the scene as a description file (SPEC §2) with every Pure's triangles in a Data block.
-/// Reflectance and emission are written as Reflectivity × Color and Emission × Color.
+/// Writes the scene as a description file (SPEC §2) with every Pure's triangles in a Data block,
+/// copies, transforms and flags as written. Reflectance and emission are written as
+/// Reflectivity × Color and Emission × Color.
 void write_description(const SceneDescription& scene, std::ostream& out);
 
 }  // namespace rad
