@@ -13,7 +13,7 @@ int main(int argc, char** argv) {
   CLI::App app{"Writes a generated scene as a rad description file."};
   std::string kind, out_path;
   uint64_t size = 100000, seed = 1;
-  app.add_option("KIND", kind, "cornell | soup | nested | stadium | building")->required();
+  app.add_option("KIND", kind, "cornell | soup | nested | stadium | building | room")->required();
   app.add_option("OUT", out_path, "description file to write (.des)")->required();
   app.add_option("--size", size, "approximate number of triangles")->capture_default_str();
   app.add_option("--seed", seed, "random seed")->capture_default_str();

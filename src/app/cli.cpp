@@ -33,6 +33,47 @@ void parse_shard(const std::string& text, int* index, int* count) {
   *count = int(n);
 }
 
+namespace {
+
+// rad convert IN OUT: a mode of its own, with only the options it uses (a solve's would be
+// silently meaningless here).
+std::optional<CommandLine> parse_convert(std::vector<std::string> args, int* exit_code) {
+  CommandLine c;
+  c.convert = true;
+  c.model.require_emission = false;
+  CLI::App app{
+      "rad convert: a scene (description, OBJ, glTF or PLY) written in another of those\n"
+      "formats: geometry, materials and as much of the hierarchy as the target holds.\n\n"
+      "  rad convert IN OUT [--emit 'PATTERN=VALUE']...\n",
+      "rad convert"};
+  app.add_option("in", c.scene, "Scene to read: .des, .obj, .gltf, .glb or .ply")->required();
+  app.add_option("out", c.output, "Scene to write: .des, .obj (+ .mtl), .gltf, .glb or .ply")
+      ->required();
+  std::vector<std::string> emit;
+  app.add_option("--emit", emit,
+                 "For a model: materials matching the pattern emit VALUE times their colour "
+                 "(repeatable)")
+      ->expected(1)
+      ->allow_extra_args(false)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  app.add_flag("-q,--quiet", c.quiet, "Print errors only");
+  std::reverse(args.begin(), args.end());
+  try {
+    app.parse(args);
+    try {
+      for (const std::string& e : emit) c.model.emit.push_back(parse_emit_rule(e));
+    } catch (const Error& e) {
+      throw CLI::ValidationError("--emit", e.what());
+    }
+  } catch (const CLI::ParseError& e) {
+    *exit_code = app.exit(e);
+    return std::nullopt;
+  }
+  return c;
+}
+
+}  // namespace
+
 std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_code) {
   // The original's flags, spelled the modern way before CLI11 sees them.
   std::vector<std::string> args;
@@ -41,6 +82,9 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
     if (a == "-noshadows") a = "--no-shadows";
     if (a == "-minsize") a = "--min-size";
     args.push_back(a);
+  }
+  if (!args.empty() && args.front() == "convert") {
+    return parse_convert(std::vector<std::string>(args.begin() + 1, args.end()), exit_code);
   }
   CommandLine c;
   c.batch = !args.empty() && args.front() == "batch";
@@ -60,6 +104,8 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
       "                                          every disagreement (rays and radiosity)\n"
       "  rad batch OUTDIR SCENE... [options]     solve many scenes (SCENE may be a .txt list\n"
       "                                          of .des files); outputs and stats in OUTDIR\n"
+      "  rad convert IN OUT                      the scene itself in another format (.des,\n"
+      "                                          .obj, .gltf, .glb, .ply); rad convert --help\n"
       "  rad serve SCENE.des [--port P] [--host H] [--output FILE]\n"
       "                                          solve in the background and watch, edit and\n"
       "                                          export it in a browser (loopback by default);\n"

@@ -43,6 +43,8 @@ struct CommandLine {
   std::vector<std::string> batch_scenes;       // .des files, or .txt lists of them
   std::vector<std::string> batch_formats{"ply", "png"};  // one output per extension
   int shard_index = 0, shard_count = 1;  // --shard I/N: the scenes i of the list with i % N == I
+  // rad convert IN OUT: the scene itself in another format (scene: IN, output: OUT).
+  bool convert = false;
   // rad serve SCENE [--port P] [--host H]: the interactive mode (output: --output, optional).
   bool serve = false;
   std::string host = "127.0.0.1";

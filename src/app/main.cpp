@@ -3,6 +3,7 @@
 
 #include "app/batch.h"
 #include "app/cli.h"
+#include "app/convert.h"
 #include "app/cross_check.h"
 #include "app/scene_job.h"
 #include "core/error.h"
@@ -38,6 +39,7 @@ rad::ServeConfig serve_config(const rad::CommandLine& cmd) {
 
 int run(const rad::CommandLine& cmd) {
   using namespace rad;
+  if (cmd.convert) return run_convert(cmd);
   if (cmd.batch) return run_batch(cmd);
   if (cmd.serve) return run_serve(serve_config(cmd));
   if (cmd.cross_check) return run_cross_check(cmd);

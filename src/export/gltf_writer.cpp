@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "export/welded_mesh.h"
 
 namespace rad {
 
@@ -46,15 +47,82 @@ int add_vec3(tinygltf::Model& m, const std::vector<Vec3>& v, bool with_bounds) {
   return int(m.accessors.size() - 1);
 }
 
-}  // namespace
+void serialise(tinygltf::Model& m, std::ostream& out, bool binary) {
+  if (m.buffers[0].data.empty()) m.buffers.clear();
+  tinygltf::TinyGLTF writer;
+  if (!writer.WriteGltfSceneToStream(&m, out, !binary, binary)) {
+    throw Error("glTF serialisation failed");
+  }
+}
 
-void write_gltf(std::ostream& out, const OutputMesh& mesh, const ToneMap& tm, bool binary) {
+tinygltf::Model empty_model() {
   tinygltf::Model m;
   m.asset.version = "2.0";
   m.asset.generator = "rad (progressive radiosity)";
   m.buffers.resize(1);
   m.scenes.resize(1);
   m.defaultScene = 0;
+  return m;
+}
+
+}  // namespace
+
+void write_scene_gltf(std::ostream& out, const Hierarchy& h, bool binary) {
+  tinygltf::Model m = empty_model();
+  m.scenes[0].name = h.scene_name;
+  bool strength = false;
+  m.nodes.resize(h.objects.size());
+  for (size_t i = 0; i < h.objects.size(); ++i) {
+    const SceneObject& o = h.objects[i];
+    tinygltf::Node& node = m.nodes[i];
+    node.name = o.name;
+    node.children.assign(o.children.begin(), o.children.end());
+    if (o.kind != ObjectKind::Pure || o.triangle_count == 0) continue;
+    const WeldedMesh w = weld_pure(h, int32_t(i));
+    tinygltf::Primitive prim;
+    prim.mode = TINYGLTF_MODE_TRIANGLES;
+    prim.attributes["POSITION"] = add_vec3(m, w.position, true);
+    tinygltf::Accessor idx;
+    idx.bufferView = add_view(m, w.indices.data(), w.indices.size() * sizeof(uint32_t),
+                              TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    idx.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    idx.type = TINYGLTF_TYPE_SCALAR;
+    idx.count = w.indices.size();
+    m.accessors.push_back(idx);
+    prim.indices = int(m.accessors.size() - 1);
+
+    tinygltf::Material mat;
+    mat.name = o.name;
+    const Vec3 rho = o.material.reflectance, e = o.material.emission;
+    mat.pbrMetallicRoughness.baseColorFactor = {rho.x, rho.y, rho.z, 1.0};
+    mat.pbrMetallicRoughness.metallicFactor = 0.0;
+    mat.pbrMetallicRoughness.roughnessFactor = 1.0;
+    const float peak = max_component(e);
+    if (peak > 0.0f) {
+      const Vec3 colour = peak > 1.0f ? e / peak : e;
+      mat.emissiveFactor = {colour.x, colour.y, colour.z};
+      if (peak > 1.0f) {
+        tinygltf::Value::Object ext;
+        ext["emissiveStrength"] = tinygltf::Value(double(peak));
+        mat.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(ext);
+        strength = true;
+      }
+    }
+    m.materials.push_back(mat);
+    prim.material = int(m.materials.size() - 1);
+    tinygltf::Mesh gm;
+    gm.name = o.name;
+    gm.primitives.push_back(prim);
+    m.meshes.push_back(gm);
+    node.mesh = int(m.meshes.size() - 1);
+  }
+  if (strength) m.extensionsUsed.push_back("KHR_materials_emissive_strength");
+  m.scenes[0].nodes.assign(h.roots.begin(), h.roots.end());
+  serialise(m, out, binary);
+}
+
+void write_gltf(std::ostream& out, const OutputMesh& mesh, const ToneMap& tm, bool binary) {
+  tinygltf::Model m = empty_model();
   if (!mesh.indices.empty()) {
     std::vector<Vec3> colour(mesh.display.size());
     for (size_t v = 0; v < colour.size(); ++v) colour[v] = tone_map(mesh.display[v], tm);
@@ -93,11 +161,7 @@ void write_gltf(std::ostream& out, const OutputMesh& mesh, const ToneMap& tm, bo
     m.nodes.push_back(node);
     m.scenes[0].nodes.push_back(0);
   }
-  if (m.buffers[0].data.empty()) m.buffers.clear();
-  tinygltf::TinyGLTF writer;
-  if (!writer.WriteGltfSceneToStream(&m, out, !binary, binary)) {
-    throw Error("glTF serialisation failed");
-  }
+  serialise(m, out, binary);
 }
 
 }  // namespace rad

@@ -4,6 +4,7 @@
 #include <ostream>
 
 #include "export/output_mesh.h"
+#include "hierarchy/hierarchy.h"
 #include "export/tonemap.h"
 
 namespace rad {
@@ -15,5 +16,12 @@ namespace rad {
 /// selects GLB; otherwise JSON with the buffer embedded as a data URI. Throws rad::Error when
 /// serialisation fails.
 void write_gltf(std::ostream& out, const OutputMesh& mesh, const ToneMap& tm, bool binary);
+
+/// Writes the scene itself (rad convert): a node per object of the hierarchy (its name, its
+/// children), and on each Pure's node a mesh of its welded triangles (POSITION, uint32 indices)
+/// with a material of its own: baseColorFactor the reflectance, emissiveFactor the emission's
+/// colour with KHR_materials_emissive_strength its largest channel (when above 1). Positions are
+/// placed (world space), so the nodes carry no transforms.
+void write_scene_gltf(std::ostream& out, const Hierarchy& h, bool binary);
 
 }  // namespace rad

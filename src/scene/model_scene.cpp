@@ -89,7 +89,7 @@ SceneDescription model_to_scene(const Model& m, const ModelOptions& o) {
       p.triangle_locs.push_back(g.triangle_locs[t]);
     }
   }
-  if (!emits) {
+  if (!emits && o.require_emission) {
     throw Error(SourceLoc{m.path},
                 "nothing in this model emits light: name the lamps' materials with --emit, "
                 "e.g. --emit '" + (m.materials.empty() ? std::string("*") : m.materials[0].name) +

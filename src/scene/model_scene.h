@@ -22,12 +22,15 @@ EmitRule parse_emit_rule(const std::string& text);
 
 struct ModelOptions {
   std::vector<EmitRule> emit;
+  /// A solve needs light; rad convert does not, and takes a model with no emitter as it is.
+  bool require_emission = true;
 };
 
 /// The scene of a model: an Assembly named after the file, one Composite per group, one Pure per
 /// (group, material) with the material's reflectance (clamped to 1 per channel, with one warning
 /// per material) and emission (the rules override the file's). Throws rad::Error naming the
-/// --emit option when nothing emits, or when a rule matches no material.
+/// --emit option when nothing emits (unless !require_emission), or when a rule matches no
+/// material.
 SceneDescription model_to_scene(const Model& m, const ModelOptions& o);
 
 }  // namespace rad

@@ -10,6 +10,7 @@
 #include <filesystem>
 
 #include "scene/model.h"
+#include "scene/model_scene.h"
 #include "scene/off_reader.h"
 #include "scene/text_file.h"
 #include "scene/tokenizer.h"
@@ -18,10 +19,11 @@ namespace rad {
 
 namespace {
 
-constexpr std::array<std::string_view, 18> kKeywords = {
+constexpr std::array<std::string_view, 19> kKeywords = {
     "Object",       "Assembly", "Composite", "Pure",      "Reflectivity",    "Color",
     "Emission",     "File",     "Data",      "Copy",      "CastsShadows",    "ReceivesShadows",
-    "Lights",       "Yes",      "No",        "Translate", "Rotate",          "Scale"};
+    "Lights",       "Yes",      "No",        "Translate", "Rotate",          "Scale",
+    "Model"};
 constexpr std::array<const char*, 3> kChannels = {"red", "green", "blue"};
 
 bool is_keyword(std::string_view word) {
@@ -149,6 +151,7 @@ class Parser {
     Token kind = tokens_.next();
     ObjectKind k;
     int32_t copy_of = -1;
+    Token model_file;
     if (is_word(kind, "Copy")) {
       // Copy "name": the latest complete object of that name (so never one that is open).
       const Token original = tokens_.next();
@@ -165,6 +168,14 @@ class Parser {
         throw Error(original.loc, "no object \"" + original.text + "\" is defined before this copy");
       }
       k = scene_.objects[size_t(copy_of)].kind;
+    } else if (is_word(kind, "Model")) {
+      // Model "file": the whole model, its groups and materials, as an Assembly (SPEC §8).
+      model_file = tokens_.next();
+      if ((model_file.kind != TokenKind::Word && model_file.kind != TokenKind::String) ||
+          model_file.text.empty()) {
+        fail_expected(model_file, "a model file's name", false);
+      }
+      k = ObjectKind::Assembly;
     } else if (is_word(kind, "Assembly")) {
       k = ObjectKind::Assembly;
     } else if (is_word(kind, "Composite")) {
@@ -172,7 +183,7 @@ class Parser {
     } else if (is_word(kind, "Pure")) {
       k = ObjectKind::Pure;
     } else {
-      fail_expected(kind, in_composite ? "'Pure' or 'Copy'" : "'Assembly', 'Composite', 'Pure' or 'Copy'",
+      fail_expected(kind, in_composite ? "'Pure' or 'Copy'" : "'Assembly', 'Composite', 'Pure', 'Copy' or 'Model'",
                     true);
     }
     if (in_composite && k != ObjectKind::Pure) {
@@ -185,10 +196,12 @@ class Parser {
     d.kind = k;
     d.loc = object.loc;
     d.copy_of = copy_of;
-    d.flags = parse_flags(d.transforms, /*body=*/copy_of < 0);
+    const bool model = !model_file.text.empty();
+    d.flags = parse_flags(d.transforms, /*body=*/copy_of < 0 && !model);
     scene_.objects.push_back(std::move(d));
     complete_.push_back(0);
-    if (copy_of >= 0) {
+    if (model) graft_model(id, model_file);
+    if (copy_of >= 0 || model) {
       complete_[size_t(id)] = 1;
       return id;
     }
@@ -205,6 +218,30 @@ class Parser {
     }
     complete_[size_t(id)] = 1;
     return id;
+  }
+
+  // The model's scene (model_scene.h) below object `id`: its groups become Composites, its
+  // (group, material) pairs Pures with the model's own materials.
+  void graft_model(int32_t id, const Token& file) {
+    namespace fs = std::filesystem;
+    const fs::path full = (fs::path(scene_.path).parent_path() / file.text).lexically_normal();
+    if (!is_model_file(full.string())) {
+      throw Error(file.loc, "'" + file.text + "' is not a model (.obj, .ply, .gltf or .glb)");
+    }
+    ModelOptions o;
+    o.require_emission = false;  // the description's other objects may hold the lights
+    const SceneDescription m = model_to_scene(read_model_file(full.string(), file.loc), o);
+    const int32_t base = int32_t(scene_.objects.size()) - 1;  // the model's root is `id`
+    for (size_t i = 1; i < m.objects.size(); ++i) {
+      ObjectDescription c = m.objects[i];
+      for (int32_t& child : c.children) child += base;
+      scene_.objects.push_back(std::move(c));
+      complete_.push_back(1);
+    }
+    for (int32_t child : m.objects[0].children) scene_.objects[size_t(id)].children.push_back(child + base);
+    if (scene_.objects[size_t(id)].children.empty()) {
+      throw Error(file.loc, "the model '" + file.text + "' has no triangles");
+    }
   }
 
   // Flags ::= Flag Flags | (nothing)

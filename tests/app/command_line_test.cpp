@@ -426,4 +426,37 @@ TEST(CommandLine, HelpListsTheOptions) {
   }
 }
 
+TEST(CommandLine, ConvertTakesAModelWithoutLightsToADescriptionAndBack) {
+  const fs::path dir = fs::temp_directory_path() / ("rad_convert_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "room.mtl") << "newmtl Wall\nKd 0.7 0.7 0.7\n";
+  std::ofstream(dir / "room.obj")
+      << "mtllib room.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\ng wall\nusemtl Wall\nf 1 2 3 4\n";
+  RadRun r = run_rad("convert " + (dir / "room.obj").string() + " " + (dir / "room.des").string());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("2 triangles"), std::string::npos) << r.out;
+  r = run_rad("--check " + (dir / "room.des").string());
+  EXPECT_EQ(r.code, 0) << r.err;
+  r = run_rad("convert " + (dir / "room.des").string() + " " + (dir / "room.glb").string());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "room.glb"));
+  // Solving it still asks for a light, naming --emit.
+  r = run_rad((dir / "room.glb").string() + " " + (dir / "room.ply").string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("--emit"), std::string::npos) << r.err;
+  fs::remove_all(dir);
+}
+
+TEST(CommandLine, ConvertRefusesAnUnknownFormatAndTheSolversOptions) {
+  const std::string scene = (kScenes / "parallel_squares.des").string();
+  const fs::path out = fs::temp_directory_path() / ("rad_convert_" + std::to_string(getpid()) + ".fbx");
+  RadRun r = run_rad("convert " + scene + " " + out.string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find(".fbx"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  r = run_rad("convert --max-shots 3 " + scene + " /tmp/x.des");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("max-shots"), std::string::npos) << r.err;
+}
+
 }  // namespace

@@ -196,6 +196,44 @@ TEST_F(ModelFiles, ADescriptionFileMayNameAModelAsAPuresGeometry) {
   EXPECT_EQ(h.objects[0].material.emission, Vec3(1.0f));
 }
 
+TEST_F(ModelFiles, ADescriptionBringsInAWholeModelWithItsMaterialsPlacedAndCopied) {
+  write("room.mtl", kRoomMtl);
+  write("room.obj", kRoomObj);
+  const std::string des = write("scene.des", R"("models"
+Object "light" Pure { Reflectivity 0 Color <1 1 1> Emission 5 Data { <0 9 0> <0 9 1> <1 9 0> } }
+Object "room A" Model "room.obj" Translate <10 0 0> CastsShadows No
+Object "room B" Copy "room A" Translate <0 0 10>
+)");
+  const SceneDescription d = parse_scene_file(des);
+  ASSERT_EQ(d.roots.size(), 3u);
+  const ObjectDescription& a = d.objects[size_t(d.roots[1])];
+  EXPECT_EQ(a.kind, ObjectKind::Assembly);
+  EXPECT_EQ(a.children.size(), 3u);  // the groups: floor, lamp, crate
+  const Hierarchy h = build_hierarchy(d);
+  EXPECT_EQ(h.triangles.size(), 1u + 2u * 6u);  // the light, and the room's 6 twice
+  // The model's own materials, per (group, material), placed by the object's transforms.
+  size_t floors = 0;
+  for (const SceneObject& o : h.objects) {
+    if (o.kind != ObjectKind::Pure || o.name != "floor: Floor") continue;
+    ++floors;
+    EXPECT_EQ(o.material.reflectance, Vec3(0.5f));
+    EXPECT_FALSE(o.casts_shadows);  // the Model object's flag reaches its Pures
+    EXPECT_GE(o.box.lo.x, 10.0f);
+  }
+  EXPECT_EQ(floors, 2u);
+  // What is not a model, and a Model in a Composite, are errors at the file's name.
+  const std::string bad = write("bad.des", "\"bad\"\nObject \"m\" Model \"x.off\"\n");
+  try {
+    parse_scene_file(bad);
+    FAIL() << "a .off named as a Model";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.des:2:18"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(parse_scene_file(write("bad2.des", "\"b\"\nObject \"c\" Composite { Object \"m\" "
+                                                  "Model \"room.obj\" }\n")),
+               Error);
+}
+
 }  // namespace
 }  // namespace rad
 

@@ -326,7 +326,7 @@ TEST(Parser, ReportsLineOfUnknownKeyword) {
 
 TEST(Parser, ReportsUnknownObjectKind) {
   expect_error("\"s\"\nObject \"w\" Group {", 2, 12,
-               "unknown keyword 'Group': expected 'Assembly', 'Composite', 'Pure' or 'Copy'");
+               "unknown keyword 'Group': expected 'Assembly', 'Composite', 'Pure', 'Copy' or 'Model'");
 }
 
 TEST(Parser, ReportsKeywordsAreCaseSensitive) {

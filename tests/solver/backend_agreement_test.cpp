@@ -109,7 +109,7 @@ TEST(BackendAgreement, EveryBundledSceneOnEveryBackend) {
 
 TEST(BackendAgreement, GeneratedScenesAtASmallSize) {
   for (SceneKind kind : {SceneKind::CornellBox, SceneKind::Nested, SceneKind::TeapotInStadium,
-                         SceneKind::Building}) {
+                         SceneKind::Building, SceneKind::FurnishedRoom}) {
     const Hierarchy h = build_hierarchy(generate_scene(kind, 1500, 7));
     expect_agreement(std::string("generated ") + to_string(kind), h, 4, false);
   }

@@ -90,6 +90,138 @@ void add_sphere(Tris& out, Vec3 centre, float r, int stacks, int slices) {
   }
 }
 
+// A point of the quad p + u·[0,1] + v·[0,1] grid of stops su × sv, oriented like add_quad.
+// Shapes below are grids of such points mapped onto a surface: `at(i, j)` gives grid point
+// (i, j) of an nu × nv grid, and the cells are cut in two with the front towards `outward(i, j)`
+// (a point that lies off the front side). Cells that map to slivers are skipped.
+template <class At, class Out>
+void add_grid(Tris& out, int nu, int nv, At at, Out outward) {
+  for (int i = 0; i < nu; ++i) {
+    for (int j = 0; j < nv; ++j) {
+      Vec3 a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+      Vec3 o = outward(i, j);
+      for (std::array<Vec3, 3> t : {std::array<Vec3, 3>{a, b, c}, std::array<Vec3, 3>{a, c, d}}) {
+        Vec3 n = glm::cross(t[1] - t[0], t[2] - t[0]);
+        float len = glm::length(n);
+        float scale = glm::length(c - a) + glm::length(d - b);
+        if (!(len > 1e-6f * scale * scale)) continue;
+        if (glm::dot(n, o - (t[0] + t[1] + t[2]) / 3.0f) < 0.0f) std::swap(t[1], t[2]);
+        out.push_back(t);
+      }
+    }
+  }
+}
+
+// Stops along [lo, hi] for a rounded box of radius r: m in each rounded band, `flat` between.
+std::vector<float> rounded_stops(float lo, float hi, float r, int m, int flat) {
+  std::vector<float> s;
+  for (int i = 0; i < m; ++i) s.push_back(lo + r * (1.0f - std::cos(1.5707963f * i / m)));
+  for (int i = 0; i <= flat; ++i) s.push_back(lo + r + (hi - lo - 2 * r) * float(i) / flat);
+  for (int i = m - 1; i >= 0; --i) s.push_back(hi - r * (1.0f - std::cos(1.5707963f * i / m)));
+  return s;
+}
+
+// A box [lo, hi] with edges and corners rounded to radius r (a bevelled cushion): each face a
+// grid whose points are pushed onto the box shrunk by r, plus r outwards. The flat middles are
+// planar, the bands curved: what a modelled sofa is made of.
+void add_rounded_box(Tris& out, Vec3 lo, Vec3 hi, float r, int m, int flat) {
+  r = std::min(r, 0.49f * std::min({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}));
+  const Vec3 inner_lo = lo + r, inner_hi = hi - r, centre = 0.5f * (lo + hi);
+  auto round = [&](Vec3 p) {
+    const Vec3 q = glm::clamp(p, inner_lo, inner_hi), d = p - q;
+    const float len = glm::length(d);
+    return len > 0.0f ? q + d * (r / len) : p;
+  };
+  const std::array<std::vector<float>, 3> stops = {rounded_stops(lo.x, hi.x, r, m, flat),
+                                                  rounded_stops(lo.y, hi.y, r, m, flat),
+                                                  rounded_stops(lo.z, hi.z, r, m, flat)};
+  for (int axis = 0; axis < 3; ++axis) {
+    const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
+    const std::vector<float>&su = stops[ua], &sv = stops[va];
+    for (float side : {lo[axis], hi[axis]}) {
+      auto at = [&](int i, int j) {
+        Vec3 p;
+        p[axis] = side, p[ua] = su[i], p[va] = sv[j];
+        return round(p);
+      };
+      auto outward = [&](int i, int j) {
+        Vec3 p = at(i, j);
+        return p + (p - centre);  // convex: every point lies in front of its own face
+      };
+      add_grid(out, int(su.size()) - 1, int(sv.size()) - 1, at, outward);
+    }
+  }
+}
+
+// A closed cylinder along y from `base`, `slices` around and `stacks` up, caps included.
+void add_cylinder(Tris& out, Vec3 base, float radius, float height, int slices, int stacks) {
+  auto ring = [&](int j, float y, float rr) {
+    const float phi = 6.2831853f * float(j % slices) / slices;
+    return base + Vec3(rr * std::cos(phi), y, rr * std::sin(phi));
+  };
+  const Vec3 axis_mid = base + Vec3(0, 0.5f * height, 0);
+  add_grid(
+      out, slices, stacks, [&](int j, int i) { return ring(j, height * i / stacks, radius); },
+      [&](int j, int i) {
+        Vec3 p = ring(j, height * i / stacks, radius);
+        return p + 2.0f * (p - Vec3(axis_mid.x, p.y, axis_mid.z));
+      });
+  const int rings = std::max(1, stacks / 2);
+  for (float y : {0.0f, height}) {
+    add_grid(
+        out, slices, rings, [&](int j, int i) { return ring(j, y, radius * float(i + 1) / (rings + 1)); },
+        [&](int, int) { return base + Vec3(0, y == 0.0f ? -1.0f : height + 1.0f, 0); });
+    for (int j = 0; j < slices; ++j) {  // the centre fan
+      Vec3 c = base + Vec3(0, y, 0), a = ring(j, y, radius / (rings + 1)),
+           b = ring(j + 1, y, radius / (rings + 1));
+      std::array<Vec3, 3> t{c, a, b};
+      if ((glm::cross(a - c, b - c).y > 0.0f) != (y > 0.0f)) std::swap(t[1], t[2]);
+      out.push_back(t);
+    }
+  }
+}
+
+// A torus about the y axis through `centre`: ring radius big_r, tube radius small_r.
+void add_torus(Tris& out, Vec3 centre, float big_r, float small_r, int nu, int nv) {
+  auto tube_centre = [&](int i) {
+    const float phi = 6.2831853f * float(i % nu) / nu;
+    return centre + big_r * Vec3(std::cos(phi), 0.0f, std::sin(phi));
+  };
+  auto at = [&](int i, int j) {
+    const float phi = 6.2831853f * float(i % nu) / nu, theta = 6.2831853f * float(j % nv) / nv;
+    const Vec3 radial(std::cos(phi), 0.0f, std::sin(phi));
+    return tube_centre(i) + small_r * (std::cos(theta) * radial + Vec3(0, std::sin(theta), 0));
+  };
+  add_grid(out, nu, nv, at, [&](int i, int j) {
+    Vec3 p = at(i, j);
+    return p + (p - tube_centre(i));
+  });
+}
+
+// A leaf: a blade drooping from `base` along `dir` (unit, roughly horizontal), `length` long
+// and up to `width` wide, with a top and an underside `thickness` apart (a leaf is seen from
+// both sides; one-sided triangles back to back would be coincident).
+void add_leaf(Tris& out, Vec3 base, Vec3 dir, float length, float width, float droop,
+              float thickness, int n) {
+  const Vec3 up(0, 1, 0);
+  const Vec3 side = glm::normalize(glm::cross(dir, up));
+  auto centre = [&](float s) { return base + dir * (length * s) + up * (length * (0.6f * s - droop * s * s)); };
+  auto normal = [&](float s) {
+    const Vec3 tangent = dir * length + up * (length * (0.6f - 2.0f * droop * s));
+    return glm::normalize(glm::cross(side, tangent));
+  };
+  auto surface = [&](int i, int j, float offset) {
+    const float s = float(i) / n, w = (float(j) - 1.0f) * width * (0.15f + 0.85f * std::sin(3.14159265f * s));
+    return centre(s) + side * (0.5f * w) + normal(s) * offset;
+  };
+  for (float face : {1.0f, -1.0f}) {
+    const float offset = face > 0.0f ? 0.5f * thickness : -0.5f * thickness;
+    add_grid(
+        out, n, 2, [&](int i, int j) { return surface(i, j, offset); },
+        [&](int i, int j) { return surface(i, j, offset) + face * normal(float(i) / n); });
+  }
+}
+
 class Builder {
  public:
   explicit Builder(std::string name) { scene_.name = std::move(name); }
@@ -159,17 +291,19 @@ const char* to_string(SceneKind kind) {
       return "stadium";
     case SceneKind::Building:
       return "building";
+    case SceneKind::FurnishedRoom:
+      return "room";
   }
   return "?";
 }
 
 SceneKind parse_scene_kind(std::string_view name) {
   for (SceneKind k : {SceneKind::CornellBox, SceneKind::Soup, SceneKind::Nested,
-                      SceneKind::TeapotInStadium, SceneKind::Building}) {
+                      SceneKind::TeapotInStadium, SceneKind::Building, SceneKind::FurnishedRoom}) {
     if (name == to_string(k)) return k;
   }
   throw Error(fmt::format(
-      "unknown scene kind \"{}\" (expected cornell, soup, nested, stadium or building)", name));
+      "unknown scene kind \"{}\" (expected cornell, soup, nested, stadium, building or room)", name));
 }
 
 SceneDescription make_cornell_box(int k) {
@@ -317,13 +451,13 @@ SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess
                             box_tris(cab, cab + Vec3(0.6f, 1.8f, 0.8f), 2 * f)));
       const int32_t id = b.group(ObjectKind::Assembly, name, std::move(room));
       if (lights_reach >= 0) {  // it lights itself and the rooms within reach
-        ObjectFlags& f = b.object(id).flags;
-        f.has_lights = true;
+        ObjectFlags& flags = b.object(id).flags;
+        flags.has_lights = true;
         for (int di = -lights_reach; di <= lights_reach; ++di) {
           for (int dk = -lights_reach; dk <= lights_reach; ++dk) {
             const int a = i + di, c = k + dk;
             if ((di || dk) && a >= 0 && a < nx && c >= 0 && c < nz) {
-              f.lights.push_back({fmt::format("room{}_{}", a, c), {}});
+              flags.lights.push_back({fmt::format("room{}_{}", a, c), {}});
             }
           }
         }
@@ -333,6 +467,148 @@ SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess
     rows.push_back(b.group(ObjectKind::Assembly, fmt::format("row{}", i), std::move(row)));
   }
   b.root(b.group(ObjectKind::Assembly, "building", std::move(rows)));
+  return b.take();
+}
+
+SceneDescription make_furnished_room(int q, uint64_t seed) {
+  q = std::max(q, 1);
+  Rng rng(seed);
+  Builder b("furnished room");
+  const float w = 5.0f, h = 2.8f, d = 4.0f;
+  const Vec3 X(1, 0, 0), Y(0, 1, 0), Z(0, 0, 1);
+  const int t = 2 * q;
+  std::vector<int32_t> room;
+  auto pure = [&](std::string name, Material m, Tris tris) {
+    room.push_back(b.pure(std::move(name), m, std::move(tris)));
+  };
+  auto color = [](float r, float g, float bl) { return Material{Vec3(r, g, bl), Vec3(0.0f)}; };
+  {
+    Tris floor, ceiling, walls;
+    add_quad(floor, Vec3(0), w * X, d * Z, t, t, Y);
+    add_quad(ceiling, h * Y, w * X, d * Z, t, t, -Y);
+    add_quad(walls, Vec3(0), w * X, h * Y, t, t, Z);
+    add_quad(walls, d * Z, w * X, h * Y, t, t, -Z);
+    add_quad(walls, Vec3(0), d * Z, h * Y, t, t, X);
+    add_quad(walls, w * X, d * Z, h * Y, t, t, -X);
+    pure("floor", color(0.55f, 0.4f, 0.25f), std::move(floor));
+    pure("ceiling", grey(0.8f), std::move(ceiling));
+    pure("walls", color(0.75f, 0.72f, 0.65f), std::move(walls));
+  }
+  Tris panel;
+  add_quad(panel, Vec3(2.0f, h - 0.01f, 1.5f), X, Z, 1, 1, -Y);
+  pure("ceiling light", light(10.0f), std::move(panel));
+
+  std::vector<int32_t> parts;
+  auto part = [&](std::string name, Material m, Tris tris) {
+    parts.push_back(b.pure(std::move(name), m, std::move(tris)));
+  };
+  auto group = [&](std::string name) {
+    room.push_back(b.group(ObjectKind::Composite, std::move(name), std::move(parts)));
+    parts.clear();
+  };
+  auto rounded = [&](Vec3 lo, Vec3 hi, float r) {
+    Tris out;
+    add_rounded_box(out, lo, hi, r, std::max(2, q), std::max(1, q / 2));
+    return out;
+  };
+  // A sofa against the back wall and an armchair facing it: cushions with rounded edges.
+  const Material fabric = color(0.6f, 0.18f, 0.14f), leather = color(0.35f, 0.22f, 0.12f);
+  part("sofa.seat", fabric, rounded(Vec3(1.3f, 0.1f, 0.1f), Vec3(3.3f, 0.45f, 0.95f), 0.08f));
+  part("sofa.back", fabric, rounded(Vec3(1.3f, 0.1f, 0.05f), Vec3(3.3f, 0.9f, 0.3f), 0.08f));
+  part("sofa.left arm", fabric, rounded(Vec3(1.05f, 0.1f, 0.05f), Vec3(1.3f, 0.65f, 0.95f), 0.08f));
+  part("sofa.right arm", fabric, rounded(Vec3(3.3f, 0.1f, 0.05f), Vec3(3.55f, 0.65f, 0.95f), 0.08f));
+  for (int k = 0; k < 4; ++k) {
+    Tris leg;
+    add_cylinder(leg, Vec3((k & 1) ? 3.45f : 1.15f, 0.0f, (k & 2) ? 0.85f : 0.15f), 0.03f, 0.1f,
+                 4 + 2 * q, 1);
+    part(fmt::format("sofa.leg{}", k), leather, std::move(leg));
+  }
+  group("sofa");
+  part("armchair.seat", leather, rounded(Vec3(3.7f, 0.0f, 2.6f), Vec3(4.6f, 0.42f, 3.5f), 0.1f));
+  part("armchair.back", leather, rounded(Vec3(3.7f, 0.0f, 3.3f), Vec3(4.6f, 0.95f, 3.6f), 0.1f));
+  part("armchair.left arm", leather, rounded(Vec3(3.55f, 0.0f, 2.6f), Vec3(3.75f, 0.62f, 3.6f), 0.08f));
+  part("armchair.right arm", leather, rounded(Vec3(4.55f, 0.0f, 2.6f), Vec3(4.75f, 0.62f, 3.6f), 0.08f));
+  group("armchair");
+  // A coffee table on four legs with a ring, a bowl of fruit and a vase on it.
+  const Material wood = color(0.5f, 0.32f, 0.18f);
+  part("table.top", wood, rounded(Vec3(1.7f, 0.40f, 1.6f), Vec3(2.9f, 0.45f, 2.3f), 0.02f));
+  for (int k = 0; k < 4; ++k) {
+    Tris leg;
+    add_cylinder(leg, Vec3((k & 1) ? 2.8f : 1.8f, 0.0f, (k & 2) ? 2.2f : 1.7f), 0.025f, 0.4f,
+                 4 + 2 * q, 2);
+    part(fmt::format("table.leg{}", k), wood, std::move(leg));
+  }
+  {
+    Tris ring, fruit, vase;
+    add_torus(ring, Vec3(2.0f, 0.47f, 1.8f), 0.1f, 0.02f, 8 * q, 3 * q);
+    for (int k = 0; k < 5; ++k) {
+      add_sphere(fruit, Vec3(2.35f + 0.09f * (k % 3), 0.5f, 1.9f + 0.1f * (k / 3)), 0.045f,
+                 3 * q, 6 * q);
+    }
+    add_cylinder(vase, Vec3(2.6f, 0.45f, 2.1f), 0.06f, 0.25f, 6 * q, 2 * q);
+    part("table.ring", color(0.8f, 0.7f, 0.3f), std::move(ring));
+    part("table.fruit", color(0.8f, 0.45f, 0.1f), std::move(fruit));
+    part("table.vase", color(0.2f, 0.3f, 0.6f), std::move(vase));
+  }
+  group("coffee table");
+  // A bookshelf on the left wall: a frame, shelves and books of random colours.
+  {
+    const float x0 = 0.02f, z0 = 1.2f, depth = 0.35f, wide = 1.6f, tall = 2.0f;
+    Tris frame;
+    add_box(frame, Vec3(x0, 0, z0), Vec3(x0 + depth, tall, z0 + 0.03f), q);
+    add_box(frame, Vec3(x0, 0, z0 + wide - 0.03f), Vec3(x0 + depth, tall, z0 + wide), q);
+    for (int k = 0; k < 5; ++k) {
+      const float y = 0.05f + 0.48f * k;
+      add_box(frame, Vec3(x0, y, z0 + 0.03f), Vec3(x0 + depth, y + 0.03f, z0 + wide - 0.03f), q);
+    }
+    part("shelf.frame", wood, std::move(frame));
+    for (int k = 0; k < 4; ++k) {
+      Tris books;
+      float z = z0 + 0.05f;
+      const float y = 0.08f + 0.48f * k;
+      while (z < z0 + wide - 0.1f) {
+        const float thick = rng.uniform(0.02f, 0.06f), high = rng.uniform(0.22f, 0.4f);
+        add_box(books, Vec3(x0 + 0.03f, y, z), Vec3(x0 + rng.uniform(0.22f, 0.3f), y + high, z + thick),
+                1);
+        z += thick + 0.002f;
+      }
+      part(fmt::format("shelf.books{}", k),
+           color(rng.uniform(0.2f, 0.7f), rng.uniform(0.1f, 0.5f), rng.uniform(0.1f, 0.5f)),
+           std::move(books));
+    }
+    group("bookshelf");
+  }
+  // A plant in the corner: a pot and thin two-sided leaves in every direction.
+  {
+    const Vec3 pot_at(4.5f, 0.0f, 0.5f);
+    Tris pot, leaves;
+    add_cylinder(pot, pot_at, 0.18f, 0.35f, 8 * q, 2 * q);
+    const int n_leaves = 40 + 10 * q;
+    for (int k = 0; k < n_leaves; ++k) {
+      const float yaw = rng.uniform(0.0f, 6.2831853f), pitch = rng.uniform(-0.2f, 0.9f);
+      const Vec3 dir = glm::normalize(Vec3(std::cos(yaw), 0.0f, std::sin(yaw)) * std::cos(pitch) +
+                                      Vec3(0, std::sin(pitch), 0) * 0.5f);
+      const Vec3 base = pot_at + Vec3(0.0f, 0.35f + rng.uniform(0.0f, 0.6f), 0.0f) +
+                        0.03f * Vec3(std::cos(yaw), 0.0f, std::sin(yaw));
+      add_leaf(leaves, base, dir, rng.uniform(0.25f, 0.45f), rng.uniform(0.04f, 0.08f),
+               rng.uniform(0.8f, 1.6f), 0.002f, 2 + 2 * q);
+    }
+    part("plant.pot", color(0.6f, 0.3f, 0.2f), std::move(pot));
+    part("plant.leaves", color(0.15f, 0.45f, 0.12f), std::move(leaves));
+    group("plant");
+  }
+  // A floor lamp by the sofa: a pole and a glowing globe (a curved emitter), and a ball.
+  {
+    Tris pole, globe, ball;
+    add_cylinder(pole, Vec3(0.7f, 0.0f, 0.4f), 0.02f, 1.45f, 4 + 2 * q, 4);
+    add_sphere(globe, Vec3(0.7f, 1.6f, 0.4f), 0.15f, 4 * q, 8 * q);
+    add_sphere(ball, Vec3(3.2f, 0.15f, 3.2f), 0.15f, 4 * q, 8 * q);
+    part("lamp.pole", grey(0.3f), std::move(pole));
+    part("lamp.globe", light(6.0f), std::move(globe));
+    group("floor lamp");
+    pure("ball", color(0.2f, 0.5f, 0.7f), std::move(ball));
+  }
+  b.root(b.group(ObjectKind::Assembly, "room", std::move(room)));
   return b.take();
 }
 
@@ -357,6 +633,13 @@ SceneDescription generate_scene(SceneKind kind, uint64_t triangles, uint64_t see
       int nx = std::max(1, int(std::lround(std::sqrt(double(rooms)))));
       return make_building(nx, std::max(1, (rooms + nx - 1) / nx), 4, 2, seed, lights_reach);
     }
+    case SceneKind::FurnishedRoom: {
+      // The triangle count grows about as q^2: counted at q = 4, then scaled.
+      size_t at4 = 0;
+      for (const auto& o : make_furnished_room(4, seed).objects) at4 += o.triangles.size();
+      const int q = int(std::lround(4.0 * std::sqrt(n / double(at4))));
+      return make_furnished_room(std::clamp(q, 1, 256), seed);
+    }
   }
   throw Error("unknown scene kind");
 }
@@ -379,62 +662,6 @@ std::vector<std::array<Vec3, 3>> tessellate_triangles(const std::vector<std::arr
     }
   }
   return out;
-}
-
-void write_description(const SceneDescription& scene, std::ostream& out) {
-  auto vec = [](const Vec3& v) { return fmt::format("<{:.9g} {:.9g} {:.9g}>", v.x, v.y, v.z); };
-  auto write = [&](auto&& self, int32_t id, int depth) -> void {
-    const ObjectDescription& o = scene.objects[id];
-    std::string pad(2 * depth, ' ');
-    out << pad << "Object \"" << o.name << "\" ";
-    if (o.copy_of >= 0) {  // the latest complete object of that name, as when it was parsed
-      out << "Copy \"" << scene.objects[size_t(o.copy_of)].name << '"';
-    } else {
-      out << to_string(o.kind);
-    }
-    for (const Transform& t : o.transforms) {
-      const auto v = [](const DVec3& d) {
-        return fmt::format("<{:.17g} {:.17g} {:.17g}>", d.x, d.y, d.z);
-      };
-      switch (t.kind) {
-        case Transform::Kind::Translate: out << " Translate " << v(t.v); break;
-        case Transform::Kind::Rotate: out << " Rotate " << v(t.v) << fmt::format(" {:.17g}", t.degrees); break;
-        case Transform::Kind::Scale: out << " Scale " << v(t.v); break;
-      }
-    }
-    const ObjectFlags& f = o.flags;
-    if (f.casts_shadows) out << " CastsShadows " << (*f.casts_shadows ? "Yes" : "No");
-    if (f.receives_shadows) out << " ReceivesShadows " << (*f.receives_shadows ? "Yes" : "No");
-    if (f.has_lights) {
-      out << " Lights {";
-      for (const NamedObject& n : f.lights) out << " \"" << n.name << '"';
-      out << " }";
-    }
-    if (o.copy_of >= 0) {
-      out << "\n";
-      return;
-    }
-    out << " {\n";
-    if (o.kind == ObjectKind::Pure) {
-      const Material& m = o.material;
-      float rho = max_component(m.reflectance), e = max_component(m.emission);
-      // One colour for both: reflectance if any, else the emission's.
-      Vec3 color = rho > 0.0f ? m.reflectance / rho : (e > 0.0f ? m.emission / e : Vec3(1.0f));
-      float emission = e > 0.0f ? mean_component(m.emission) / mean_component(color) : 0.0f;
-      out << pad << "  Reflectivity " << fmt::format("{:.9g}", rho) << " Color " << vec(color)
-          << " Emission " << fmt::format("{:.9g}", emission) << "\n";
-      out << pad << "  Data {\n";
-      for (const auto& t : o.triangles) {
-        out << pad << "    " << vec(t[0]) << ' ' << vec(t[1]) << ' ' << vec(t[2]) << '\n';
-      }
-      out << pad << "  }\n";
-    } else {
-      for (int32_t c : o.children) self(self, c, depth + 1);
-    }
-    out << pad << "}\n";
-  };
-  out << '"' << scene.name << "\"\n";
-  for (int32_t r : scene.roots) write(write, r, 0);
 }
 
 }  // namespace rad

@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "scene/description.h"
+#include "scene/description_writer.h"
 
 namespace rad {
 
@@ -16,10 +17,11 @@ enum class SceneKind : uint8_t {
   Nested,           // "nested": Assemblies of Assemblies holding Composites of Pures (furniture)
   TeapotInStadium,  // "stadium": a finely tessellated sphere in a large, nearly empty room
   Building,         // "building": N × M rooms with doors, lights and furniture Composites
+  FurnishedRoom,    // "room": one room of curved, finely tessellated furniture and a plant
 };
 
 const char* to_string(SceneKind kind);
-/// "cornell" | "soup" | "nested" | "stadium" | "building"; throws rad::Error otherwise.
+/// "cornell" | "soup" | "nested" | "stadium" | "building" | "room"; throws rad::Error otherwise.
 SceneKind parse_scene_kind(std::string_view name);
 
 /// A scene of the given family with about `triangles` triangles (within a factor ~1.5; at least
@@ -54,15 +56,18 @@ SceneDescription make_teapot_in_stadium(int stacks);
 SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess, uint64_t seed,
                                int lights_reach = -1);
 
+/// A 5 × 2.8 × 4 m room furnished as real models are made (SPEC §10's curved meshes): a sofa
+/// and an armchair of rounded boxes, a coffee table on cylinder legs with a torus, spheres and a
+/// vase on it, a bookshelf of boxes, a plant of thin two-sided leaves, a floor lamp whose globe
+/// emits (a curved emitter) and a ceiling light panel. Every curved part's tessellation grows
+/// with q: about 4,500 q^2 triangles (7,000 at q = 1, 78,000 at q = 4).
+SceneDescription make_furnished_room(int q, uint64_t seed);
+
 /// Every triangle cut into k × k congruent triangles of a barycentric grid, same orientation: the
 /// surface is exactly the same, only its tessellation changes. Grid points shared by neighbouring
 /// triangles are computed by the same expression, so they are equal to the last bit.
 std::vector<std::array<Vec3, 3>> tessellate_triangles(const std::vector<std::array<Vec3, 3>>& in,
                                                       int k);
 
-/// Writes the scene as a description file (SPEC §2) with every Pure's triangles in a Data block,
-/// copies, transforms and flags as written. Reflectance and emission are written as
-/// Reflectivity × Color and Emission × Color.
-void write_description(const SceneDescription& scene, std::ostream& out);
 
 }  // namespace rad

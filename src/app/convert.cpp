@@ -1,0 +1,26 @@
+#include "app/convert.h"
+
+#include <cstdio>
+
+#include "export/scene_export.h"
+#include "hierarchy/hierarchy.h"
+#include "scene/scene_file.h"
+
+namespace rad {
+
+int run_convert(const CommandLine& cmd) {
+  check_scene_extension(cmd.output);
+  const SceneDescription scene = read_scene_file(cmd.scene, cmd.model);
+  const Hierarchy h = build_hierarchy(scene);
+  const std::vector<std::string> lost = write_scene_file(cmd.output, scene, h);
+  if (!cmd.quiet) {
+    size_t pures = 0;
+    for (const SceneObject& o : h.objects) pures += o.kind == ObjectKind::Pure;
+    std::printf("%s: %zu objects (%zu Pures), %zu triangles\n", cmd.output.c_str(),
+                h.objects.size(), pures, h.triangles.size());
+    for (const std::string& l : lost) std::printf("note: %s\n", l.c_str());
+  }
+  return 0;
+}
+
+}  // namespace rad
