@@ -56,6 +56,10 @@ std::optional<CommandLine> parse_convert(std::vector<std::string> args, int* exi
       ->expected(1)
       ->allow_extra_args(false)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  std::string hierarchy;
+  app.add_option("--hierarchy", hierarchy,
+                 "file (as read: a model's groups and materials) or auto (the Pures regrouped "
+                 "into compact Composites and Assemblies of what is near); default file");
   app.add_flag("-q,--quiet", c.quiet, "Print errors only");
   std::reverse(args.begin(), args.end());
   try {
@@ -64,6 +68,11 @@ std::optional<CommandLine> parse_convert(std::vector<std::string> args, int* exi
       for (const std::string& e : emit) c.model.emit.push_back(parse_emit_rule(e));
     } catch (const Error& e) {
       throw CLI::ValidationError("--emit", e.what());
+    }
+    try {
+      if (!hierarchy.empty()) c.hierarchy = parse_hierarchy_mode(hierarchy);
+    } catch (const Error& e) {
+      throw CLI::ValidationError("--hierarchy", e.what());
     }
   } catch (const CLI::ParseError& e) {
     *exit_code = app.exit(e);
@@ -141,6 +150,11 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
     app.add_option("output", c.output, "Output mesh (.ply, .off, .gfo (COFF), .obj, .gltf or .glb)");
   }
   app.add_flag("--check", c.check, "Parse and validate the scene, print a summary, do not solve");
+  std::string hierarchy;
+  app.add_option("--hierarchy", hierarchy,
+                 "Object hierarchy (SPEC §3): file (as written), auto (Pures regrouped into "
+                 "compact Composites and Assemblies of what is near) or flat (one Composite); "
+                 "default auto for models, file for descriptions");
   app.add_option("--backend", backend, "Shadow-ray backend: embree, grid or brute")
       ->capture_default_str();
   std::string cross_check;
@@ -227,6 +241,11 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
   try {
     app.parse(args);
     c.backend = parse_backend_kind(backend);
+    try {
+      if (!hierarchy.empty()) c.hierarchy = parse_hierarchy_mode(hierarchy);
+    } catch (const Error& e) {
+      throw CLI::ValidationError("--hierarchy", e.what());
+    }
     try {
       for (const std::string& e : emit) c.model.emit.push_back(parse_emit_rule(e));
     } catch (const Error& e) {

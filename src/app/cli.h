@@ -7,6 +7,7 @@
 
 #include "export/camera.h"
 #include "export/tonemap.h"
+#include "hierarchy/auto_hierarchy.h"
 #include "scene/model_scene.h"
 #include "solver/options.h"
 #include "visibility/backend.h"
@@ -16,6 +17,7 @@ namespace rad {
 struct CommandLine {
   std::string scene;         // a description (.des) or a model (.obj, .ply)
   ModelOptions model;        // --emit rules for a model
+  std::optional<HierarchyMode> hierarchy;  // --hierarchy; none: auto for models, file else
   std::string output;       // empty with --check
   bool check = false;       // parse, validate, summarise; no solve
   std::optional<BackendKind> cross_check;  // --cross-check B: solve with --backend and B, compare

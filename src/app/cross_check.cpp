@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <memory>
 
+#include "hierarchy/auto_hierarchy.h"
 #include "hierarchy/hierarchy.h"
 #include "scene/scene_file.h"
 #include "solver/solver.h"
@@ -103,7 +104,7 @@ class ComparingBackend final : public VisibilityBackend {
 
 int run_cross_check(const CommandLine& cmd) {
   const BackendKind first = cmd.backend, second = *cmd.cross_check;
-  const Hierarchy h = build_hierarchy(read_scene_file(cmd.scene, cmd.model));
+  const Hierarchy h = load_hierarchy(cmd.scene, cmd.model, cmd.hierarchy);
   const int threads = cmd.threads > 0 ? cmd.threads : tbb::info::default_concurrency();
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
   std::printf("Cross-check of %s: %s against %s (%zu triangles)\n", cmd.scene.c_str(),

@@ -8,6 +8,7 @@
 #include "app/scene_job.h"
 #include "core/error.h"
 #include "core/interrupt.h"
+#include "hierarchy/auto_hierarchy.h"
 #include "hierarchy/hierarchy.h"
 #include "scene/scene_file.h"
 #include "serve/run_serve.h"
@@ -18,6 +19,7 @@ rad::ServeConfig serve_config(const rad::CommandLine& cmd) {
   rad::ServeConfig c;
   c.scene = cmd.scene;
   c.model = cmd.model;
+  c.hierarchy = cmd.hierarchy;
   c.server.host = cmd.host;
   c.server.port = cmd.port;
   c.session.solver = cmd.solver;
@@ -44,7 +46,7 @@ int run(const rad::CommandLine& cmd) {
   if (cmd.serve) return run_serve(serve_config(cmd));
   if (cmd.cross_check) return run_cross_check(cmd);
   if (cmd.check) {
-    std::fputs(summarize(build_hierarchy(read_scene_file(cmd.scene, cmd.model))).c_str(), stdout);
+    std::fputs(summarize(load_hierarchy(cmd.scene, cmd.model, cmd.hierarchy)).c_str(), stdout);
     return 0;
   }
   run_scene_job(cmd, SceneJob{cmd.scene, cmd.output, cmd.images, cmd.stats_json});

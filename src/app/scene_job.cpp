@@ -22,6 +22,7 @@
 #include "export/mesh_file.h"
 #include "export/output_mesh.h"
 #include "export/seams.h"
+#include "hierarchy/auto_hierarchy.h"
 #include "hierarchy/hierarchy.h"
 #include "mesh/patch_mesh.h"
 #include "scene/scene_file.h"
@@ -65,7 +66,7 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job) {
   for (const std::string& image : job.images) check_image_extension(image);
 
   say("Reading description file...");
-  const Hierarchy hierarchy = build_hierarchy(read_scene_file(job.scene, cmd.model));
+  const Hierarchy hierarchy = load_hierarchy(job.scene, cmd.model, cmd.hierarchy);
   times.parse = since(start);
   const uint64_t job_id = job.stats_json.empty() ? 0 : job_fingerprint(cmd, job, hierarchy);
   if (job.skip_if_done && job_id != 0 && read_job_fingerprint(job.stats_json) == job_id) {

@@ -12,6 +12,7 @@
 #include "export/image_file.h"
 #include "export/image_render.h"
 #include "export/mesh_file.h"
+#include "hierarchy/auto_hierarchy.h"
 #include "hierarchy/hierarchy.h"
 #include "scene/scene_file.h"
 #include "serve/shutdown.h"
@@ -30,7 +31,7 @@ int run_serve(const ServeConfig& c) {
   WebAssets assets =
       load_web_assets(c.web_modules.empty() ? default_web_modules_dir() : c.web_modules);
 
-  const Hierarchy hierarchy = build_hierarchy(read_scene_file(c.scene, c.model));
+  const Hierarchy hierarchy = load_hierarchy(c.scene, c.model, c.hierarchy);
   const int threads = c.threads > 0 ? c.threads : tbb::info::default_concurrency();
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
   const std::unique_ptr<VisibilityBackend> visibility =

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "export/camera.h"
+#include "hierarchy/auto_hierarchy.h"
 #include "scene/model_scene.h"
 #include "serve/server.h"
 #include "serve/session.h"
@@ -17,6 +18,7 @@ namespace rad {
 struct ServeConfig {
   std::string scene;
   ModelOptions model;  // for a model file as the scene
+  std::optional<HierarchyMode> hierarchy;  // none: default_hierarchy_mode
   ServerOptions server;
   SessionOptions session;
   BackendKind backend = BackendKind::Embree;

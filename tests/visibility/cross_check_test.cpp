@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "backend_params.h"
+#include "hierarchy/auto_hierarchy.h"
 #include "scenegen/scenegen.h"
 #include "visibility/agreement.h"
 
@@ -27,6 +28,12 @@ const CrossScene kScenes[] = {
     {"soup", [] { return make_triangle_soup(10000, 1); }},
     {"nested", [] { return generate_scene(SceneKind::Nested, 10000, 2); }},
     {"stadium", [] { return generate_scene(SceneKind::TeapotInStadium, 10000, 3); }},
+    // The grid walks the automatic hierarchy's boxes (a binary tree of Assemblies) instead.
+    {"room, automatic hierarchy",
+     [] {
+       return automatic_hierarchy(
+           build_hierarchy(generate_scene(SceneKind::FurnishedRoom, 10000, 4)));
+     }},
 };
 
 TEST(VisibilityCrossCheck, GridAndEmbreeAgreeWithBruteForce) {
