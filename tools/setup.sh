@@ -27,11 +27,78 @@ rad_install_missing() {
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 }
 
+# ThreadSanitizer sees the synchronisation only of code it instruments. Debian's libtbb and
+# libembree3 are not instrumented, and both synchronise tasks in inline code (TBB's headers,
+# compiled into Embree's BVH builder too): every hand-off of a task between threads looks like a
+# race. So a thread-sanitized tree links its own oneTBB and Embree, built with -fsanitize=thread
+# from Debian's source packages of the very versions installed (apt-get source through a private
+# list, so the system's sources are left alone), under $BUILD/deps; built once, a few minutes.
+# Embree gets its SSE2 kernels and triangles only: what rad uses. Prints the install prefix.
+rad_fetch_source() {  # PACKAGE VERSION WORKDIR: unpacks the upstream tarball into WORKDIR
+  local work="$3" key=/usr/share/keyrings/debian-archive-keyring.gpg
+  mkdir -p "$work/lists/partial"
+  echo "deb-src [signed-by=$key] http://deb.debian.org/debian bookworm main" >"$work/sources.list"
+  local apt=(-o Dir::Etc::SourceList="$work/sources.list" -o Dir::Etc::SourceParts=/dev/null
+    -o Dir::State::Lists="$work/lists" -o APT::Sandbox::User=root)
+  apt-get "${apt[@]}" update -qq >"$work/apt.log" 2>&1 || { cat "$work/apt.log" >&2; return 1; }
+  # Only the upstream tarball is used; Debian's patch set may be gone from the mirror.
+  (cd "$work" && apt-get "${apt[@]}" source --download-only -qq "$1=$2" >>apt.log 2>&1) || true
+  ls "$work"/"$1"_*.orig.tar.* >/dev/null 2>&1 ||
+    { cat "$work/apt.log" >&2; echo "cannot fetch the source of $1 $2" >&2; return 1; }
+  tar -xf "$work"/"$1"_*.orig.tar.* -C "$work"
+}
+
+rad_tsan_deps() {
+  local prefix="$BUILD/deps" work="$BUILD/deps-src" log="$BUILD/deps-build.log"
+  local flags=(-G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_INSTALL_PREFIX="$prefix"
+    -DCMAKE_PREFIX_PATH="$prefix")
+  if [ ! -f "$prefix/lib/cmake/TBB/TBBConfig.cmake" ]; then
+    rad_install_missing xz-utils >&2
+    local version
+    version="$(dpkg-query -W -f='${source:Version}' libtbb-dev)"
+    echo "Building oneTBB $version with -fsanitize=thread into $prefix (log: $log)" >&2
+    rm -rf "$work" && rad_fetch_source onetbb "$version" "$work"
+    { cmake -S "$work"/oneTBB-* -B "$work/build" "${flags[@]}" -DTBB_SANITIZE=thread \
+        -DTBB_TEST=OFF -DTBB_EXAMPLES=OFF -DTBB_STRICT=OFF -DTBBMALLOC_BUILD=OFF \
+        -DTBB_ENABLE_IPO=OFF && cmake --build "$work/build" -j "$(nproc)" &&
+        cmake --install "$work/build"; } >"$log" 2>&1 || { tail -20 "$log" >&2; return 1; }
+    rm -rf "$work"
+  fi
+  if [ ! -f "$prefix/lib/libembree3.so" ]; then
+    local version tsan=(-DCMAKE_CXX_FLAGS=-fsanitize=thread -DCMAKE_C_FLAGS=-fsanitize=thread
+      -DCMAKE_SHARED_LINKER_FLAGS=-fsanitize=thread -DCMAKE_EXE_LINKER_FLAGS=-fsanitize=thread
+      "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -g1")
+    version="$(dpkg-query -W -f='${source:Version}' libembree-dev)"
+    echo "Building Embree $version with -fsanitize=thread into $prefix (log: $log)" >&2
+    rm -rf "$work" && rad_fetch_source embree "$version" "$work"
+    local src
+    src="$(echo "$work"/embree-*)"
+    touch "$src/readme.pdf"  # a documentation file the install wants (not in Debian's tarball)
+    { cmake -S "$src" -B "$work/build" "${flags[@]}" "${tsan[@]}" \
+        -DEMBREE_TASKING_SYSTEM=INTERNAL -DEMBREE_ISPC_SUPPORT=OFF -DEMBREE_TUTORIALS=OFF \
+        -DEMBREE_MAX_ISA=SSE2 -DEMBREE_GEOMETRY_QUAD=OFF -DEMBREE_GEOMETRY_CURVE=OFF \
+        -DEMBREE_GEOMETRY_SUBDIVISION=OFF -DEMBREE_GEOMETRY_USER=OFF \
+        -DEMBREE_GEOMETRY_INSTANCE=OFF -DEMBREE_GEOMETRY_GRID=OFF -DEMBREE_GEOMETRY_POINT=OFF &&
+        cmake --build "$work/build" -j "$(nproc)" && cmake --install "$work/build"; } >"$log" 2>&1 ||
+      { tail -20 "$log" >&2; return 1; }
+    rm -rf "$work"
+  fi
+  echo "$prefix"
+}
+
 rad_build() {
   rad_install_missing "${rad_packages[@]}"
+  local extra=()
+  if [[ "$RAD_SANITIZE" == *thread* ]]; then
+    local deps
+    deps="$(rad_tsan_deps)"
+    extra=(-DCMAKE_PREFIX_PATH="$deps" -DTBB_DIR="$deps/lib/cmake/TBB"
+      -Dembree_DIR="$(echo "$deps"/lib/cmake/embree-*)")
+    export LD_LIBRARY_PATH="$deps/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+  fi
   # Configured every time (a second when nothing changed), so a changed option takes effect.
   cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DRAD_SANITIZE="$RAD_SANITIZE" ${RAD_SANITIZE:+-DRAD_BUILD_BENCH=OFF} >/dev/null
+    -DRAD_SANITIZE="$RAD_SANITIZE" ${RAD_SANITIZE:+-DRAD_BUILD_BENCH=OFF} "${extra[@]}" >/dev/null
   cmake --build "$BUILD" -j "$(nproc)"
 }
 

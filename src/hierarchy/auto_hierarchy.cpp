@@ -15,6 +15,7 @@ namespace {
 constexpr size_t kMaxCompositeParts = 32;
 constexpr double kMinFill = 0.25;
 constexpr double kMaxShare = 0.5;
+constexpr double kMaxDensity = 4.0;
 
 // A box's volume with every side at least `floor` long: flat parts (a wall, a table top) have
 // no volume, yet they fill their group's box as much as a thin slab does.
@@ -39,7 +40,6 @@ struct Regrouper {
     if (!o.receives_shadows) p.flags.receives_shadows = false;
     p.triangles.assign(h.triangles.corners.begin() + o.first_triangle,
                        h.triangles.corners.begin() + o.first_triangle + o.triangle_count);
-    p.triangle_locs.assign(o.triangle_count, o.loc);
     out.objects.push_back(std::move(p));
     return int32_t(out.objects.size()) - 1;
   }
@@ -64,16 +64,21 @@ struct Regrouper {
       centres.extend(b.center());
     }
     const float floor = 0.05f * box.diagonal();
-    // Compact: the parts fill the box, and none is a shell around the others (a room's walls
-    // would make any group inside them look full).
-    double filled = 0.0, largest = 0.0;
+    // Compact: the parts fill the box, none is a shell around the others (a room's walls would
+    // make any group inside them look full), and none is much denser in triangles than the
+    // group (one grid over a plant and a sofa would give the plant's leaves a few crowded cells:
+    // the teapot in a stadium).
+    double filled = 0.0, largest = 0.0, triangles = 0.0, densest = 0.0;
     for (int32_t i : items) {
-      const double v = volume(h.objects[size_t(i)].box, floor);
+      const SceneObject& o = h.objects[size_t(i)];
+      const double v = volume(o.box, floor);
       filled += v, largest = std::max(largest, v);
+      triangles += o.triangle_count;
+      densest = std::max(densest, o.triangle_count / v);
     }
     const double whole = volume(box, floor);
     if (items.size() <= kMaxCompositeParts && filled >= kMinFill * whole &&
-        largest <= kMaxShare * whole) {
+        largest <= kMaxShare * whole && densest <= kMaxDensity * triangles / whole) {
       std::vector<int32_t> parts;
       for (int32_t i : items) parts.push_back(pure(i));
       return group(ObjectKind::Composite, std::move(parts));

@@ -67,7 +67,7 @@ struct ObjectDescription {
   std::vector<int32_t> children;      // Assembly and Composite only
   Material material;                  // Pure only
   std::vector<std::array<Vec3, 3>> triangles;  // Pure only: corners a, b, c (front: (b-a)x(c-a))
-  std::vector<SourceLoc> triangle_locs;        // Pure only: where each triangle was written
+  std::vector<SourceLoc> triangle_locs;        // Pure only: where each was written (or empty)
 };
 
 struct SceneDescription {

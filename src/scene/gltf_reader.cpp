@@ -257,7 +257,6 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
         }
         group.triangles.push_back(t);
         group.material.push_back(material);
-        group.triangle_locs.push_back(SourceLoc{path});
       };
       const size_t n3 = index.size();
       if (mode == TINYGLTF_MODE_TRIANGLES) {

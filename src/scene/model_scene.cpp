@@ -86,7 +86,7 @@ SceneDescription model_to_scene(const Model& m, const ModelOptions& o) {
       }
       ObjectDescription& p = d.objects[size_t(pure_of[k])];
       p.triangles.push_back(g.triangles[t]);
-      p.triangle_locs.push_back(g.triangle_locs[t]);
+      if (!g.triangle_locs.empty()) p.triangle_locs.push_back(g.triangle_locs[t]);
     }
   }
   if (!emits && o.require_emission) {

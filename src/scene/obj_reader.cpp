@@ -133,7 +133,6 @@ Model parse_obj_text(std::string_view obj, std::string_view mtl, const std::stri
       fallback_used |= !known;
       g.triangles.push_back(tri);
       g.material.push_back(known ? uint32_t(id) : fallback);
-      g.triangle_locs.push_back(SourceLoc{path});
     }
     if (!g.triangles.empty()) m.groups.push_back(std::move(g));
   }

@@ -235,7 +235,6 @@ Model parse_ply(std::string_view bytes, const std::string& path) {
     for (uint32_t k = 2; k < d.face_first[f + 1] - d.face_first[f]; ++k) {
       g.triangles.push_back({corner(v[0]), corner(v[k - 1]), corner(v[k])});
       g.material.push_back(0);
-      g.triangle_locs.push_back(SourceLoc{path});
     }
   }
   if (g.triangles.empty()) throw Error(SourceLoc{path}, "has no faces");

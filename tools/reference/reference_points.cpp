@@ -11,9 +11,18 @@ std::vector<uint32_t> points_per_triangle(const Triangles& t, const PointOptions
   for (float a : t.area) total_area += a;
   std::vector<uint32_t> n(t.size(), o.min_per_triangle);
   if (total_area <= 0.0) return n;
+  // Systematic sampling of the cumulative area: point k sits at (k + 1/2) x area / total, and a
+  // triangle gets the points that fall on its stretch. Exactly `total` points, within one of
+  // each triangle's share; rounding each share on its own would give a finely tessellated
+  // surface (every share below 1/2) no points at all.
+  const double per_point = total_area / double(o.total);
+  double before = 0.0;
   for (size_t i = 0; i < t.size(); ++i) {
-    const double share = std::round(double(o.total) * t.area[i] / total_area);
-    n[i] = std::max(o.min_per_triangle, uint32_t(share));
+    const double after = before + t.area[i];
+    const uint32_t share = uint32_t(std::floor(after / per_point + 0.5) -
+                                    std::floor(before / per_point + 0.5));
+    n[i] = std::max(o.min_per_triangle, share);
+    before = after;
   }
   return n;
 }

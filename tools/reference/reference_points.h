@@ -17,7 +17,8 @@ struct PointOptions {
   float inset = 1e-3f;
 };
 
-/// Points per triangle: max(min_per_triangle, round(total x area / scene area)).
+/// Points per triangle: max(min_per_triangle, its points of `total` spread systematically by
+/// area over the scene), each within one of total x area / scene area.
 std::vector<uint32_t> points_per_triangle(const Triangles& t, const PointOptions& o);
 
 /// Stratified points on every triangle, deterministic for a seed: point i of n on a triangle
