@@ -30,10 +30,10 @@ HierarchyMode default_hierarchy_mode(const std::string& scene_path);
 /// quarter of its own box (little empty space, SPEC §3), none of them more than half of it (a
 /// room's shell is not a part of the chairs inside it) nor more than 4 times as dense in
 /// triangles as the group (a finely tessellated plant beside a sofa would crowd a few cells of
-/// one grid), becomes a Composite (a chair: one grid over its parts); any other group is split in two at the median of its Pures' centres along
-/// their widest spread and becomes an Assembly of the halves (so a shadow ray tests O(log n)
-/// boxes, not n). Deterministic. Throws rad::Error if the scene has Lights lists,
-/// which name objects that regrouping does not keep.
+/// one grid), becomes a Composite (a chair: one grid over its parts); any other group is split in
+/// two at the median of its Pures' centres along their widest spread and becomes an Assembly of the
+/// halves (so a shadow ray tests O(log n) boxes, not n). Deterministic. Throws rad::Error if the
+/// scene has Lights lists, which name objects that regrouping does not keep.
 SceneDescription automatic_hierarchy(const Hierarchy& h);
 
 /// Every Pure of `h` in one Composite.

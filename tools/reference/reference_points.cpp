@@ -19,8 +19,8 @@ std::vector<uint32_t> points_per_triangle(const Triangles& t, const PointOptions
   double before = 0.0;
   for (size_t i = 0; i < t.size(); ++i) {
     const double after = before + t.area[i];
-    const uint32_t share = uint32_t(std::floor(after / per_point + 0.5) -
-                                    std::floor(before / per_point + 0.5));
+    const uint32_t share =
+        uint32_t(std::floor(after / per_point + 0.5) - std::floor(before / per_point + 0.5));
     n[i] = std::max(o.min_per_triangle, share);
     before = after;
   }
