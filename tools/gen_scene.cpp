@@ -24,7 +24,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   try {
-    rad::SceneDescription scene = rad::generate_scene(rad::parse_scene_kind(kind), size, seed, lights_reach);
+    rad::SceneDescription scene =
+        rad::generate_scene(rad::parse_scene_kind(kind), size, seed, lights_reach);
     std::ofstream out(out_path);
     if (!out) throw rad::Error(fmt::format("cannot write {}", out_path));
     rad::write_description(scene, out);

@@ -1,8 +1,9 @@
 #include "app/batch.h"
 
+#include <fmt/format.h>
+
 #include <cstdio>
 #include <filesystem>
-#include <fmt/format.h>
 #include <fstream>
 #include <set>
 
@@ -32,8 +33,10 @@ std::vector<std::string> expand_scene_list(const std::vector<std::string>& args)
     std::string line;
     while (std::getline(in, line)) {
       line = line.substr(0, line.find('#'));
-      while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.pop_back();
-      while (!line.empty() && std::isspace(static_cast<unsigned char>(line.front()))) line.erase(0, 1);
+      while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back())))
+        line.pop_back();
+      while (!line.empty() && std::isspace(static_cast<unsigned char>(line.front())))
+        line.erase(0, 1);
       if (line.empty()) continue;
       const fs::path p(line);
       scenes.push_back(p.is_absolute() ? line : (fs::path(a).parent_path() / p).string());
@@ -61,7 +64,8 @@ int run_batch(const CommandLine& cmd) {
       try {
         check_image_extension(name);
       } catch (const Error&) {
-        throw Error("unknown batch format '" + f + "' (mesh: ply off obj gltf glb; image: png "
+        throw Error("unknown batch format '" + f +
+                    "' (mesh: ply off obj gltf glb; image: png "
                     "hdr exr pfm)");
       }
       image_exts.push_back(f);
@@ -76,7 +80,8 @@ int run_batch(const CommandLine& cmd) {
   std::set<std::string> used;
   for (const std::string& scene : scenes) {
     std::string name = fs::path(scene).stem().string();
-    for (int k = 2; !used.insert(name).second; ++k) name = fs::path(scene).stem().string() + "-" + std::to_string(k);
+    for (int k = 2; !used.insert(name).second; ++k)
+      name = fs::path(scene).stem().string() + "-" + std::to_string(k);
     names.push_back(name);
   }
 
@@ -103,10 +108,10 @@ int run_batch(const CommandLine& cmd) {
     rows.push_back(row);
     if (!row.result.skipped) {  // a skipped scene keeps the row of the run that solved it
       const SceneJobResult& x = row.result;
-      merge_batch_record(cmd.batch_dir,
-                         {name, scene, row.status == "FAILED" ? "failed" : row.status, row.detail,
-                          x.seconds, x.shots, uint64_t(x.vertices), cmd.shard_index,
-                          cmd.shard_count});
+      merge_batch_record(
+          cmd.batch_dir,
+          {name, scene, row.status == "FAILED" ? "failed" : row.status, row.detail, x.seconds,
+           x.shots, uint64_t(x.vertices), cmd.shard_index, cmd.shard_count});
     }
     if (interrupt_signal()) break;  // Ctrl-C: the scene in progress was written; no more
   }

@@ -1,15 +1,13 @@
 #include "app/cli.h"
 
-#include "core/memory.h"
-
 #include <CLI/CLI.hpp>
-
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 
 #include "core/error.h"
+#include "core/memory.h"
 
 namespace rad {
 
@@ -19,14 +17,15 @@ void parse_shard(const std::string& text, int* index, int* count) {
     const char* id = std::getenv("SLURM_ARRAY_TASK_ID");
     const char* n = std::getenv("SLURM_ARRAY_TASK_COUNT");
     const char* min = std::getenv("SLURM_ARRAY_TASK_MIN");
-    if (!id || !n) throw Error("'slurm' needs SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT (sbatch --array)");
+    if (!id || !n)
+      throw Error("'slurm' needs SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT (sbatch --array)");
     long i = std::strtol(id, nullptr, 10) - (min ? std::strtol(min, nullptr, 10) : 0);
     spec = std::to_string(i) + "/" + n;
   }
   long i = -1, n = 0;
   char slash = 0, end = 0;
-  if (std::sscanf(spec.c_str(), "%ld%c%ld%c", &i, &slash, &n, &end) != 3 || slash != '/' ||
-      n < 1 || n > 1000000 || i < 0 || i >= n) {
+  if (std::sscanf(spec.c_str(), "%ld%c%ld%c", &i, &slash, &n, &end) != 3 || slash != '/' || n < 1 ||
+      n > 1000000 || i < 0 || i >= n) {
     throw Error("expected I/N with 0 <= I < N, or 'slurm'; got '" + spec + "'");
   }
   *index = int(i);
@@ -126,10 +125,8 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
                    "Solve this process's share of the list: I/N takes scenes I, I + N, I + 2N, "
                    "... (0 <= I < N); 'slurm' takes I and N from the Slurm job array "
                    "(SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN, SLURM_ARRAY_TASK_COUNT)");
-    app.add_option("outdir", c.batch_dir, "Folder for every scene's outputs and stats")
-        ->required();
-    app.add_option("scenes", c.batch_scenes, "Scene files, or .txt files listing them")
-        ->required();
+    app.add_option("outdir", c.batch_dir, "Folder for every scene's outputs and stats")->required();
+    app.add_option("scenes", c.batch_scenes, "Scene files, or .txt files listing them")->required();
     app.add_option("--formats", formats,
                    "Outputs per scene, by extension: mesh (ply, off, obj, gltf, glb) and image "
                    "(png, hdr, exr, pfm)")
@@ -146,8 +143,10 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
     app.add_option("--output", c.output,
                    "rad serve: mesh written when the server stops (.ply, .off, .obj, .gltf, .glb)");
   } else {
-    app.add_option("scene", c.scene, "Scene: a description (.des) or a model (.obj, .ply)")->required();
-    app.add_option("output", c.output, "Output mesh (.ply, .off, .gfo (COFF), .obj, .gltf or .glb)");
+    app.add_option("scene", c.scene, "Scene: a description (.des) or a model (.obj, .ply)")
+        ->required();
+    app.add_option("output", c.output,
+                   "Output mesh (.ply, .off, .gfo (COFF), .obj, .gltf or .glb)");
   }
   app.add_flag("--check", c.check, "Parse and validate the scene, print a summary, do not solve");
   std::string hierarchy;
@@ -284,7 +283,8 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
     const auto grid = [](int n, const char* option) {
       const int m = int(std::lround(std::sqrt(double(n))));
       if (n < 1 || n > 256 || m * m != n) {
-        throw CLI::ValidationError(option, "must be a square number from 1 to 256 (1, 4, 9, 16, ...)");
+        throw CLI::ValidationError(option,
+                                   "must be a square number from 1 to 256 (1, 4, 9, 16, ...)");
       }
       return m;
     };
@@ -304,7 +304,8 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
       at = comma + 1;
     }
     if (!c.checkpoint.empty() && (c.batch || c.serve || c.check)) {
-      throw CLI::ValidationError("--checkpoint", "applies to one scene solved from the command line");
+      throw CLI::ValidationError("--checkpoint",
+                                 "applies to one scene solved from the command line");
     }
     if (!c.check && !c.cross_check && !c.batch && !c.serve && c.output.empty() &&
         c.images.empty()) {

@@ -15,22 +15,22 @@
 namespace rad {
 
 struct CommandLine {
-  std::string scene;         // a description (.des) or a model (.obj, .ply)
-  ModelOptions model;        // --emit rules for a model
+  std::string scene;                       // a description (.des) or a model (.obj, .ply)
+  ModelOptions model;                      // --emit rules for a model
   std::optional<HierarchyMode> hierarchy;  // --hierarchy; none: auto for models, file else
-  std::string output;       // empty with --check
-  bool check = false;       // parse, validate, summarise; no solve
+  std::string output;                      // empty with --check
+  bool check = false;                      // parse, validate, summarise; no solve
   std::optional<BackendKind> cross_check;  // --cross-check B: solve with --backend and B, compare
   BackendKind backend = BackendKind::Embree;
   bool packets = true;
-  int threads = 0;          // 0: all cores
+  int threads = 0;  // 0: all cores
   SolverOptions solver;
   bool ascii = false;
   bool ambient = true;
   ToneCurve tonemap = ToneCurve::Clamp;
-  float exposure = 0.0f;    // stops added to the automatic exposure
-  std::vector<std::string> images;  // --image, repeatable: .png, .hdr, .exr or .pfm
-  std::optional<Camera> camera;     // --camera; none: default_camera frames the scene
+  float exposure = 0.0f;                      // stops added to the automatic exposure
+  std::vector<std::string> images;            // --image, repeatable: .png, .hdr, .exr or .pfm
+  std::optional<Camera> camera;               // --camera; none: default_camera frames the scene
   int image_width = 800, image_height = 800;  // --size WxH
   std::string stats_json;
   // --checkpoint FILE: the solver state saved every checkpoint_every seconds, when stopped and
@@ -42,7 +42,7 @@ struct CommandLine {
   // rad batch OUTDIR SCENE...: every scene solved with the same options.
   bool batch = false;
   std::string batch_dir;
-  std::vector<std::string> batch_scenes;       // .des files, or .txt lists of them
+  std::vector<std::string> batch_scenes;                 // .des files, or .txt lists of them
   std::vector<std::string> batch_formats{"ply", "png"};  // one output per extension
   int shard_index = 0, shard_count = 1;  // --shard I/N: the scenes i of the list with i % N == I
   // rad convert IN OUT: the scene itself in another format (scene: IN, output: OUT).

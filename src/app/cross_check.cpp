@@ -1,12 +1,12 @@
 #include "app/cross_check.h"
 
+#include <fmt/format.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
 #include <algorithm>
 #include <cstdio>
-#include <fmt/format.h>
 #include <memory>
 
 #include "hierarchy/auto_hierarchy.h"
@@ -28,8 +28,8 @@ size_t segment_count(const Hierarchy& h) {
 
 std::string describe(const Segment& s) {
   const Vec3 q = s.origin + s.direction;
-  return fmt::format("({:.9g}, {:.9g}, {:.9g}) -> ({:.9g}, {:.9g}, {:.9g})", s.origin.x,
-                     s.origin.y, s.origin.z, q.x, q.y, q.z);
+  return fmt::format("({:.9g}, {:.9g}, {:.9g}) -> ({:.9g}, {:.9g}, {:.9g})", s.origin.x, s.origin.y,
+                     s.origin.z, q.x, q.y, q.z);
 }
 
 // Prints the ray-level report of one backend; returns whether it agrees (no mismatch beyond
@@ -38,10 +38,11 @@ bool report_rays(const Hierarchy& h, BackendKind kind, const VisibilityBackend& 
                  const std::vector<Segment>& segments) {
   const auto backend = make_visibility_backend(kind, h);
   const RayAgreement a = compare_rays(h, oracle, *backend, segments);
-  std::printf("  rays, %s against brute force: %zu segments (%zu blocked), %zu differ: %zu within "
-              "%.3g of an edge or plane (rounding), %zu farther\n",
-              to_string(kind), a.segments, a.blocked, a.mismatches.size(), a.near,
-              ambiguity_limit(h), a.far);
+  std::printf(
+      "  rays, %s against brute force: %zu segments (%zu blocked), %zu differ: %zu within "
+      "%.3g of an edge or plane (rounding), %zu farther\n",
+      to_string(kind), a.segments, a.blocked, a.mismatches.size(), a.near, ambiguity_limit(h),
+      a.far);
   size_t shown_near = 0;
   for (const RayMismatch& m : a.mismatches) {
     const bool far = m.ambiguity >= ambiguity_limit(h);
@@ -129,13 +130,13 @@ int run_cross_check(const CommandLine& cmd) {
     m.ambiguity = ambiguity_distance(h, m.segment);
     cast_near += m.ambiguity < ambiguity_limit(h);
   }
-  std::sort(cast.begin(), cast.end(), [](const RayMismatch& x, const RayMismatch& y) {
-    return x.ambiguity > y.ambiguity;
-  });
-  std::printf("  rays the %s solve cast: %zu, answered differently by %s: %zu (%zu within %.3g "
-              "of an edge or plane, %zu farther)\n",
-              to_string(first), both.compared(), to_string(second), cast.size(), cast_near,
-              ambiguity_limit(h), cast.size() - cast_near);
+  std::sort(cast.begin(), cast.end(),
+            [](const RayMismatch& x, const RayMismatch& y) { return x.ambiguity > y.ambiguity; });
+  std::printf(
+      "  rays the %s solve cast: %zu, answered differently by %s: %zu (%zu within %.3g "
+      "of an edge or plane, %zu farther)\n",
+      to_string(first), both.compared(), to_string(second), cast.size(), cast_near,
+      ambiguity_limit(h), cast.size() - cast_near);
   for (size_t i = 0; i < cast.size() && i < 20; ++i) {
     std::printf("    %s: %s %s, %s %s (%.3g from an edge or plane)\n",
                 describe(cast[i].segment).c_str(), to_string(first),
@@ -152,7 +153,8 @@ int run_cross_check(const CommandLine& cmd) {
   Vec3 worst_at(0.0f);
   for (size_t p = 0; p < a.mesh.polygons.size(); ++p) {
     const PolygonMesh &pa = a.mesh.polygons[p], &pb = b.mesh.polygons[p];
-    for (uint32_t v = 0; v < pa.vertex_count(); ++v) largest = std::max(largest, max_component(a.radiosity(p, v)));
+    for (uint32_t v = 0; v < pa.vertex_count(); ++v)
+      largest = std::max(largest, max_component(a.radiosity(p, v)));
     if (pa.vertex_count() != pb.vertex_count() || pa.elements.size() != pb.elements.size()) {
       if (differing++ == 0) first_differing = int64_t(p);
       continue;
@@ -168,15 +170,17 @@ int run_cross_check(const CommandLine& cmd) {
               count_vertices(a.mesh), to_string(second), count_vertices(b.mesh), differing);
   if (first_differing >= 0) {
     const SceneObject& o = h.objects[size_t(h.triangles.object[size_t(first_differing)])];
-    std::printf(" (the first: triangle %lld of \"%s\", %s)", static_cast<long long>(first_differing),
-                o.name.c_str(), to_string(o.loc).c_str());
+    std::printf(" (the first: triangle %lld of \"%s\", %s)",
+                static_cast<long long>(first_differing), o.name.c_str(), to_string(o.loc).c_str());
   }
-  std::printf("\n  radiosity over the %zu vertices in both: largest difference %.3g of the largest "
-              "radiosity, at (%.6g, %.6g, %.6g)\n",
-              compared, relative, worst_at.x, worst_at.y, worst_at.z);
+  std::printf(
+      "\n  radiosity over the %zu vertices in both: largest difference %.3g of the largest "
+      "radiosity, at (%.6g, %.6g, %.6g)\n",
+      compared, relative, worst_at.x, worst_at.y, worst_at.z);
   agree &= differing == 0 && relative <= 1e-5f && a.shots == b.shots;
-  std::printf("%s\n", agree ? "agree" : "DISAGREE (rays beyond rounding, subdivision, or radiosity "
-                                        "beyond 1e-5 of the largest)");
+  std::printf("%s\n", agree ? "agree"
+                            : "DISAGREE (rays beyond rounding, subdivision, or radiosity "
+                              "beyond 1e-5 of the largest)");
   return agree ? 0 : 1;
 }
 

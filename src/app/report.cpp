@@ -1,12 +1,11 @@
 #include "app/report.h"
 
-#include <sys/resource.h>
-
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
+#include <sys/resource.h>
 #include <tbb/info.h>
 
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
 #include "mesh/patch_mesh.h"
@@ -48,14 +47,18 @@ void write_stats_json(const std::string& path, const CommandLine& cmd, const std
   const Vec3 ambient = ambient_radiosity(s);
   json history = json::array();
   for (const ShotRecord& h : s.history) {
-    history.push_back({{"shot", h.shot}, {"source", h.source}, {"seconds", h.seconds},
+    history.push_back({{"shot", h.shot},
+                       {"source", h.source},
+                       {"seconds", h.seconds},
                        {"unshot_fraction", h.unshot_fraction}});
   }
   json j = {
       {"schema", "rad-stats"},
       {"version", 1},
-      {"scene", {{"path", scene}, {"name", s.hierarchy->scene_name},
-                 {"triangles", s.hierarchy->triangles.size()}}},
+      {"scene",
+       {{"path", scene},
+        {"name", s.hierarchy->scene_name},
+        {"triangles", s.hierarchy->triangles.size()}}},
       {"backend", to_string(cmd.backend)},
       {"packets", cmd.packets},
       {"threads", cmd.threads > 0 ? cmd.threads : tbb::info::default_concurrency()},
@@ -65,35 +68,50 @@ void write_stats_json(const std::string& path, const CommandLine& cmd, const std
         {"max_samples", std::max(s.options.sample_grid, s.options.max_sample_grid) *
                             std::max(s.options.sample_grid, s.options.max_sample_grid)},
         {"clusters", s.clusters.size()},
-        {"form_factor",
-         s.options.method == FormFactorMethod::Analytic ? "analytic" : "samples"},
+        {"form_factor", s.options.method == FormFactorMethod::Analytic ? "analytic" : "samples"},
         {"threshold", s.options.subdivision_threshold},
         {"intensity_cut", s.options.intensity_cut},
         {"converge", s.options.converge},
         {"min_size", s.min_size}}},
       {"stop_reason", to_string(stop)},
       {"partial", stop == StopReason::Interrupted || stop == StopReason::MemoryLimit},
-      {"checkpoint", cmd.checkpoint.empty() ? nlohmann::json(nullptr) : nlohmann::json(cmd.checkpoint)},
+      {"checkpoint",
+       cmd.checkpoint.empty() ? nlohmann::json(nullptr) : nlohmann::json(cmd.checkpoint)},
       {"rays",
-       {{"shot", r.rays}, {"hits_on_polygons", r.occluded}, {"box_trials", r.box_trials},
-        {"box_hits", r.box_hits}, {"cells_visited", r.cells_visited},
-        {"triangle_tests", r.triangle_tests}, {"intensity_cuts", s.stats.intensity_cuts}}},
+       {{"shot", r.rays},
+        {"hits_on_polygons", r.occluded},
+        {"box_trials", r.box_trials},
+        {"box_hits", r.box_hits},
+        {"cells_visited", r.cells_visited},
+        {"triangle_tests", r.triangle_tests},
+        {"intensity_cuts", s.stats.intensity_cuts}}},
       {"solver",
-       {{"shots", s.shots}, {"subdivisions", s.stats.subdivisions},
+       {{"shots", s.shots},
+        {"subdivisions", s.stats.subdivisions},
         {"exact_midpoints", s.stats.exact_midpoints},
         {"interpolated_midpoints", s.stats.interpolated_midpoints},
-        {"vertex_evaluations", s.stats.vertex_evaluations}, {"culled", s.stats.culled},
-        {"vertices", count_vertices(s.mesh)}, {"elements", count_leaves(s.mesh)},
-        {"emitted_energy", s.emitted_energy}, {"absorbed_energy", s.absorbed_energy},
+        {"vertex_evaluations", s.stats.vertex_evaluations},
+        {"culled", s.stats.culled},
+        {"vertices", count_vertices(s.mesh)},
+        {"elements", count_leaves(s.mesh)},
+        {"emitted_energy", s.emitted_energy},
+        {"absorbed_energy", s.absorbed_energy},
         {"unshot_fraction", s.unshot_fraction()},
         {"ambient", {ambient.x, ambient.y, ambient.z}},
         {"ambient_displayed", cmd.ambient}}},
       {"seconds",
-       {{"parse", t.parse}, {"build", t.build}, {"solve", t.solve}, {"shoot", s.stats.shoot_seconds},
-        {"refine", s.stats.refine_seconds}, {"write", t.write}, {"total", t.total}}},
+       {{"parse", t.parse},
+        {"build", t.build},
+        {"solve", t.solve},
+        {"shoot", s.stats.shoot_seconds},
+        {"refine", s.stats.refine_seconds},
+        {"write", t.write},
+        {"total", t.total}}},
       {"seams",
-       {{"shared_edges", seams.shared_edges}, {"vertices_checked", seams.vertices_checked},
-        {"largest_jump", seams.largest_jump}, {"mean_jump", seams.mean_jump},
+       {{"shared_edges", seams.shared_edges},
+        {"vertices_checked", seams.vertices_checked},
+        {"largest_jump", seams.largest_jump},
+        {"mean_jump", seams.mean_jump},
         {"mean_radiosity", seams.mean_radiosity},
         {"largest_jump_at", {seams.where.x, seams.where.y, seams.where.z}}}},
       {"peak_memory_bytes", peak_memory_bytes()},

@@ -1,5 +1,6 @@
 #include "app/scene_job.h"
 
+#include <fmt/format.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
@@ -7,7 +8,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fmt/format.h>
 #include <memory>
 
 #include "app/report.h"
@@ -34,7 +34,9 @@ namespace rad {
 
 namespace {
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 }  // namespace
 
 uint64_t job_fingerprint(const CommandLine& cmd, const SceneJob& job, const Hierarchy& h) {
@@ -104,7 +106,8 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job) {
       cmd.max_memory > 0 ? cmd.max_memory : size_t(0.9 * double(machine_memory_bytes()));
   const double now = double(resident_bytes()), growth = worst_case_growth_bytes(state);
   double per_shot = 0.0;
-  for (size_t c = 0; c < state.clusters.size(); ++c) per_shot = std::max(per_shot, shot_log_bytes(state, c));
+  for (size_t c = 0; c < state.clusters.size(); ++c)
+    per_shot = std::max(per_shot, shot_log_bytes(state, c));
   if (memory_limit > 0 && now + growth > double(memory_limit)) {
     throw Error(SourceLoc{job.scene},
                 fmt::format("this solve could need {} ({} now, {} more if every element were "
@@ -115,7 +118,8 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job) {
                             state.min_size, format_bytes(double(memory_limit)),
                             cmd.max_memory > 0 ? " (--max-memory)" : " (90% of this machine's)"));
   }
-  say(fmt::format("Memory: {} now, at most {} more by subdivision and {} per shot logged "
+  say(
+      fmt::format("Memory: {} now, at most {} more by subdivision and {} per shot logged "
                   "(limit {})",
                   format_bytes(now), format_bytes(growth), format_bytes(per_shot),
                   format_bytes(double(memory_limit))));

@@ -6,8 +6,8 @@
 
 #include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 
 #include "core/error.h"
@@ -22,7 +22,8 @@ void sync_path(const std::string& p, const std::string& name) {
   const int fd = ::open(p.c_str(), O_RDONLY | O_CLOEXEC);
   const bool ok = fd >= 0 && ::fsync(fd) == 0;
   if (fd >= 0) ::close(fd);
-  if (!ok) throw Error(SourceLoc{name}, std::string("cannot sync to disk: ") + std::strerror(errno));
+  if (!ok)
+    throw Error(SourceLoc{name}, std::string("cannot sync to disk: ") + std::strerror(errno));
 }
 }  // namespace
 

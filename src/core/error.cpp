@@ -1,7 +1,8 @@
 #include "core/error.h"
 
-#include <cstdio>
 #include <fmt/format.h>
+
+#include <cstdio>
 
 namespace rad {
 
@@ -14,8 +15,7 @@ std::string to_string(const SourceLoc& loc) {
 namespace {
 std::string compose(const SourceLoc& loc, const char* kind, const std::string& message) {
   std::string where = to_string(loc);
-  return where.empty() ? std::string(kind) + ": " + message
-                       : where + ": " + kind + ": " + message;
+  return where.empty() ? std::string(kind) + ": " + message : where + ": " + kind + ": " + message;
 }
 }  // namespace
 

@@ -1,11 +1,11 @@
 #include "core/memory.h"
 
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <fmt/format.h>
 #include <fstream>
 #include <string_view>
 
@@ -24,7 +24,8 @@ size_t machine_memory_bytes() {
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
   size_t bytes = pages > 0 && page > 0 ? size_t(pages) * size_t(page) : 0;
   // cgroup v2 ("max" when unlimited), then v1.
-  for (const char* path : {"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes"}) {
+  for (const char* path :
+       {"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes"}) {
     std::ifstream in(path);
     unsigned long long limit = 0;
     if (in >> limit && limit > 0 && (bytes == 0 || limit < bytes)) bytes = size_t(limit);
@@ -49,7 +50,8 @@ size_t parse_byte_size(const std::string& text) {
   const std::string_view prefixes = "KMGT";
   if (!u.empty() && u != "B") {
     const size_t k = prefixes.find(u[0]);
-    if (k == std::string_view::npos || (u.size() > 1 && u.substr(1) != "B" && u.substr(1) != "IB")) {
+    if (k == std::string_view::npos ||
+        (u.size() > 1 && u.substr(1) != "B" && u.substr(1) != "IB")) {
       return fail();
     }
     scale = std::pow(1024.0, double(k + 1));
@@ -60,7 +62,8 @@ size_t parse_byte_size(const std::string& text) {
 }
 
 std::string format_bytes(double bytes) {
-  if (bytes >= 1024.0 * 1024 * 1024) return fmt::format("{:.1f} GiB", bytes / (1024.0 * 1024 * 1024));
+  if (bytes >= 1024.0 * 1024 * 1024)
+    return fmt::format("{:.1f} GiB", bytes / (1024.0 * 1024 * 1024));
   if (bytes >= 1024.0 * 1024) return fmt::format("{:.0f} MiB", bytes / (1024.0 * 1024));
   return fmt::format("{:.0f} KiB", bytes / 1024.0);
 }

@@ -4,8 +4,8 @@
 #include <ostream>
 
 #include "export/output_mesh.h"
-#include "hierarchy/hierarchy.h"
 #include "export/tonemap.h"
+#include "hierarchy/hierarchy.h"
 
 namespace rad {
 

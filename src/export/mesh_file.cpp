@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "core/error.h"
 #include "core/atomic_file.h"
+#include "core/error.h"
 #include "export/gltf_writer.h"
 #include "export/obj_writer.h"
 #include "export/off_writer.h"

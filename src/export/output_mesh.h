@@ -10,9 +10,9 @@ namespace rad {
 
 struct OutputMesh {
   std::vector<Vec3> position;
-  std::vector<Vec3> radiosity;  // linear radiosity B = E + rho H (the solver's value)
-  std::vector<Vec3> display;    // radiosity shown: B, plus rho x ambient when asked
-  std::vector<uint32_t> indices;  // 3 per face
+  std::vector<Vec3> radiosity;        // linear radiosity B = E + rho H (the solver's value)
+  std::vector<Vec3> display;          // radiosity shown: B, plus rho x ambient when asked
+  std::vector<uint32_t> indices;      // 3 per face
   std::vector<int32_t> face_polygon;  // the polygon each face belongs to
 
   size_t face_count() const { return indices.size() / 3; }

@@ -1,8 +1,9 @@
 #include "export/ply_writer.h"
 
+#include <fmt/format.h>
+
 #include <bit>
 #include <cstring>
-#include <fmt/format.h>
 
 namespace rad {
 
@@ -32,8 +33,8 @@ void write_ply(std::ostream& out, const OutputMesh& m, const ToneMap& tm, bool a
     to_srgb8(m.display[v], tm, c);
     const Vec3 &p = m.position[v], &b = m.radiosity[v];
     if (ascii) {
-      out << fmt::format("{} {} {} {} {} {} {} {} {}\n", p.x, p.y, p.z, c[0], c[1], c[2], b.x,
-                         b.y, b.z);
+      out << fmt::format("{} {} {} {} {} {} {} {} {}\n", p.x, p.y, p.z, c[0], c[1], c[2], b.x, b.y,
+                         b.z);
     } else {
       put(out, p.x), put(out, p.y), put(out, p.z);
       put(out, c[0]), put(out, c[1]), put(out, c[2]);

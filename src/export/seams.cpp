@@ -25,8 +25,8 @@ std::vector<std::pair<float, Vec3>> on_edge(const OutputMesh& m, const std::vect
 }
 
 Vec3 interpolate(const std::vector<std::pair<float, Vec3>>& e, float t) {
-  auto hi = std::lower_bound(e.begin(), e.end(), t,
-                             [](const auto& x, float v) { return x.first < v; });
+  auto hi =
+      std::lower_bound(e.begin(), e.end(), t, [](const auto& x, float v) { return x.first < v; });
   if (hi == e.begin()) return hi->second;
   if (hi == e.end()) return e.back().second;
   const auto lo = hi - 1;

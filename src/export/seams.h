@@ -11,12 +11,12 @@
 namespace rad {
 
 struct SeamReport {
-  size_t shared_edges = 0;     // pairs of coplanar polygons sharing an edge
-  size_t vertices_checked = 0; // output vertices on those edges
-  double largest_jump = 0.0;   // max over them of the largest channel |B_this - B_other|
+  size_t shared_edges = 0;      // pairs of coplanar polygons sharing an edge
+  size_t vertices_checked = 0;  // output vertices on those edges
+  double largest_jump = 0.0;    // max over them of the largest channel |B_this - B_other|
   double mean_jump = 0.0;
-  double mean_radiosity = 0.0; // of the output vertices (mean over channels): the scale
-  Vec3 where{0.0f};            // position of the largest jump
+  double mean_radiosity = 0.0;  // of the output vertices (mean over channels): the scale
+  Vec3 where{0.0f};             // position of the largest jump
 };
 
 /// For every edge shared by two coplanar polygons, compares each output vertex lying on it

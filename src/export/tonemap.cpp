@@ -34,8 +34,10 @@ float auto_exposure(std::span<const Vec3> values, float ignore_above, float stop
 Vec3 tone_map(const Vec3& linear, const ToneMap& tm) {
   const Vec3 x = glm::max(linear * tm.scale, Vec3(0.0f));
   switch (tm.curve) {
-    case ToneCurve::Clamp: return glm::min(x, Vec3(1.0f));
-    case ToneCurve::Reinhard: return x / (Vec3(1.0f) + x);
+    case ToneCurve::Clamp:
+      return glm::min(x, Vec3(1.0f));
+    case ToneCurve::Reinhard:
+      return x / (Vec3(1.0f) + x);
     case ToneCurve::Aces: {
       // Narkowicz 2015 fit of the ACES filmic curve.
       const Vec3 y = (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);

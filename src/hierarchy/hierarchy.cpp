@@ -33,7 +33,8 @@ struct Builder {
       placement = placement * transform_matrix(content->transforms);
       if (!flags.casts_shadows) flags.casts_shadows = content->flags.casts_shadows;
       if (!flags.receives_shadows) flags.receives_shadows = content->flags.receives_shadows;
-      if (!flags.has_lights) flags.has_lights = content->flags.has_lights, flags.lights = content->flags.lights;
+      if (!flags.has_lights)
+        flags.has_lights = content->flags.has_lights, flags.lights = content->flags.lights;
     }
     // Copies can nest and multiply: bound the walk and what it makes, not the stack or memory.
     if (depth > limits.max_depth || out.objects.size() >= limits.max_objects) {
@@ -63,12 +64,13 @@ struct Builder {
     Aabb box;
     if (content->kind == ObjectKind::Pure) {
       if (out.triangles.size() + content->triangles.size() > limits.max_triangles) {
-        throw Error(d.loc, fmt::format("the scene places more than {} triangles",
-                                       limits.max_triangles));
+        throw Error(d.loc,
+                    fmt::format("the scene places more than {} triangles", limits.max_triangles));
       }
       for (size_t i = 0; i < content->triangles.size(); ++i) {
         auto t = content->triangles[i];
-        const SourceLoc& where = i < content->triangle_locs.size() ? content->triangle_locs[i] : d.loc;
+        const SourceLoc& where =
+            i < content->triangle_locs.size() ? content->triangle_locs[i] : d.loc;
         if (!identity) {
           for (Vec3& p : t) p = Vec3(DVec3(placement * glm::dvec4(DVec3(p), 1.0)));
           if (mirrored) std::swap(t[1], t[2]);
@@ -119,7 +121,8 @@ struct Builder {
   // it lists, as sorted, merged ranges.
   void resolve_lights() {
     std::unordered_map<std::string_view, std::vector<int32_t>> by_name;
-    for (size_t i = 0; i < out.objects.size(); ++i) by_name[out.objects[i].name].push_back(int32_t(i));
+    for (size_t i = 0; i < out.objects.size(); ++i)
+      by_name[out.objects[i].name].push_back(int32_t(i));
     for (size_t i = 0; i < out.objects.size(); ++i) {
       const ObjectFlags& f = flags_of[i];
       if (!f.has_lights) continue;

@@ -18,7 +18,7 @@ struct Triangles {
   std::vector<std::array<Vec3, 3>> corners;  // a, b, c
   std::vector<Vec3> normal;                  // unit, (b-a)x(c-a) normalised
   std::vector<float> area;
-  std::vector<int32_t> object;               // the Pure that owns the triangle
+  std::vector<int32_t> object;  // the Pure that owns the triangle
   size_t size() const { return corners.size(); }
 };
 
@@ -36,12 +36,12 @@ struct SceneObject {
   Aabb box;                     // of all triangles below
   uint32_t first_triangle = 0;  // triangles below this object: [first, first + count)
   uint32_t triangle_count = 0;
-  Material material;            // Pure only
+  Material material;  // Pure only
   // The per-object flags of SPEC §8, resolved: the object's own setting, else its nearest
   // ancestor's, else the default.
-  bool casts_shadows = true;     // false: shadow rays pass through its triangles
-  bool receives_shadows = true;  // false: its vertices take every visibility term as 1
-  int32_t influence = -1;        // the object whose Lights list applies here; -1: lights all
+  bool casts_shadows = true;       // false: shadow rays pass through its triangles
+  bool receives_shadows = true;    // false: its vertices take every visibility term as 1
+  int32_t influence = -1;          // the object whose Lights list applies here; -1: lights all
   std::vector<TriangleRange> lit;  // with a Lights list: what it lights, sorted and merged
 };
 

@@ -3,11 +3,10 @@
 
 #include <array>
 #include <cstdint>
+#include <glm/mat4x4.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <glm/mat4x4.hpp>
 
 #include "core/error.h"
 #include "core/math.h"
@@ -56,7 +55,7 @@ glm::dmat4 transform_matrix(const std::vector<Transform>& transforms);
 struct ObjectDescription {
   std::string name;
   ObjectKind kind = ObjectKind::Pure;
-  SourceLoc loc;                      // where "Object" was written
+  SourceLoc loc;  // where "Object" was written
   ObjectFlags flags;
   // Placement (SPEC §8), as written: applied to everything below, after the transforms of the
   // objects inside and before those of the objects around it.
@@ -64,15 +63,15 @@ struct ObjectDescription {
   // A copy of an earlier object (`Copy "name"`): its kind, contents and flags, placed by this
   // object's transform on top of the original's. Holds no children or triangles itself.
   int32_t copy_of = -1;
-  std::vector<int32_t> children;      // Assembly and Composite only
-  Material material;                  // Pure only
+  std::vector<int32_t> children;               // Assembly and Composite only
+  Material material;                           // Pure only
   std::vector<std::array<Vec3, 3>> triangles;  // Pure only: corners a, b, c (front: (b-a)x(c-a))
   std::vector<SourceLoc> triangle_locs;        // Pure only: where each was written (or empty)
 };
 
 struct SceneDescription {
-  std::string name;   // the scene's name (first string of the file)
-  std::string path;   // the description file
+  std::string name;  // the scene's name (first string of the file)
+  std::string path;  // the description file
   std::vector<ObjectDescription> objects;
   std::vector<int32_t> roots;  // top-level objects, in file order
 };

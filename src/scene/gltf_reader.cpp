@@ -31,14 +31,15 @@ struct Context {
   std::map<int, Vec3> texture_mean;  // image index -> mean linear colour
 };
 
-bool load_image(tinygltf::Image* image, const int index, std::string*, std::string* warn, int,
-                int, const unsigned char* bytes, int size, void* user) {
+bool load_image(tinygltf::Image* image, const int index, std::string*, std::string* warn, int, int,
+                const unsigned char* bytes, int size, void* user) {
   auto* c = static_cast<Context*>(user);
   if (size > 0) {
     if (const std::optional<Vec3> m = mean_texture_colour(bytes, size_t(size))) {
       c->texture_mean[index] = *m;
     } else if (warn) {
-      *warn += "image " + std::to_string(index) + " cannot be decoded; its material uses its factor\n";
+      *warn +=
+          "image " + std::to_string(index) + " cannot be decoded; its material uses its factor\n";
     }
   }
   image->width = image->height = 1;
@@ -84,12 +85,15 @@ struct View {
 };
 
 View view(const tinygltf::Model& m, int index, const std::string& path, const char* what) {
-  if (index < 0 || size_t(index) >= m.accessors.size()) fail(path, std::string(what) + ": no such accessor");
+  if (index < 0 || size_t(index) >= m.accessors.size())
+    fail(path, std::string(what) + ": no such accessor");
   const tinygltf::Accessor& a = m.accessors[size_t(index)];
   if (a.sparse.isSparse) fail(path, std::string(what) + ": sparse accessors are not read");
-  if (a.bufferView < 0 || size_t(a.bufferView) >= m.bufferViews.size()) fail(path, std::string(what) + ": no buffer view");
+  if (a.bufferView < 0 || size_t(a.bufferView) >= m.bufferViews.size())
+    fail(path, std::string(what) + ": no buffer view");
   const tinygltf::BufferView& bv = m.bufferViews[size_t(a.bufferView)];
-  if (bv.buffer < 0 || size_t(bv.buffer) >= m.buffers.size()) fail(path, std::string(what) + ": no buffer");
+  if (bv.buffer < 0 || size_t(bv.buffer) >= m.buffers.size())
+    fail(path, std::string(what) + ": no buffer");
   const std::vector<unsigned char>& buffer = m.buffers[size_t(bv.buffer)].data;
   const int csize = tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType));
   const int ncomp = tinygltf::GetNumComponentsInType(uint32_t(a.type));
@@ -116,27 +120,43 @@ View view(const tinygltf::Model& m, int index, const std::string& path, const ch
 double component(const View& v, size_t i, int k) {
   const unsigned char* p = v.data + i * v.stride;
   switch (v.component) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p + 4 * k, 4); return f; }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[k];
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t u; std::memcpy(&u, p + 2 * k, 2); return u; }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t u; std::memcpy(&u, p + 4 * k, 4); return u; }
-    default: return std::nan("");
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+      float f;
+      std::memcpy(&f, p + 4 * k, 4);
+      return f;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return p[k];
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      uint16_t u;
+      std::memcpy(&u, p + 2 * k, 2);
+      return u;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+      uint32_t u;
+      std::memcpy(&u, p + 4 * k, 4);
+      return u;
+    }
+    default:
+      return std::nan("");
   }
 }
 
 glm::dmat4 local_transform(const tinygltf::Node& n) {
   if (n.matrix.size() == 16) return glm::make_mat4(n.matrix.data());
   glm::dmat4 m(1.0);
-  if (n.translation.size() == 3) m = glm::translate(m, glm::dvec3(n.translation[0], n.translation[1], n.translation[2]));
+  if (n.translation.size() == 3)
+    m = glm::translate(m, glm::dvec3(n.translation[0], n.translation[1], n.translation[2]));
   if (n.rotation.size() == 4) {
-    m *= glm::mat4_cast(glm::normalize(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2])));
+    m *= glm::mat4_cast(
+        glm::normalize(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2])));
   }
   if (n.scale.size() == 3) m = glm::scale(m, glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));
   return m;
 }
 
-ModelMaterial material_of(const tinygltf::Material& g, const Context& c,
-                          const tinygltf::Model& m, const std::string& path) {
+ModelMaterial material_of(const tinygltf::Material& g, const Context& c, const tinygltf::Model& m,
+                          const std::string& path) {
   ModelMaterial mat;
   mat.name = g.name.empty() ? "material" : g.name;
   mat.loc = SourceLoc{path};
@@ -153,8 +173,9 @@ ModelMaterial material_of(const tinygltf::Material& g, const Context& c,
     strength = ext->second.Get("emissiveStrength").GetNumberAsDouble();
   }
   if (g.emissiveFactor.size() == 3) {
-    mat.emission = Vec3(float(g.emissiveFactor[0] * strength), float(g.emissiveFactor[1] * strength),
-                        float(g.emissiveFactor[2] * strength));
+    mat.emission =
+        Vec3(float(g.emissiveFactor[0] * strength), float(g.emissiveFactor[1] * strength),
+             float(g.emissiveFactor[2] * strength));
   }
   for (int k = 0; k < 3; ++k) {
     if (!(mat.reflectance[k] >= 0.0f && std::isfinite(mat.reflectance[k])) ||
@@ -180,13 +201,15 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
       binary ? loader.LoadBinaryFromMemory(&g, &err, &warn,
                                            reinterpret_cast<const unsigned char*>(bytes.data()),
                                            unsigned(bytes.size()), folder)
-             : loader.LoadASCIIFromString(&g, &err, &warn, bytes.data(), unsigned(bytes.size()), folder);
+             : loader.LoadASCIIFromString(&g, &err, &warn, bytes.data(), unsigned(bytes.size()),
+                                          folder);
   if (!ok) fail(path, "not a readable glTF file: " + err.substr(0, err.find('\n')));
   if (!warn.empty()) rad::warn(SourceLoc{path}, warn.substr(0, warn.find('\n')));
 
   Model m;
   m.path = path;
-  for (const tinygltf::Material& mat : g.materials) m.materials.push_back(material_of(mat, c, g, path));
+  for (const tinygltf::Material& mat : g.materials)
+    m.materials.push_back(material_of(mat, c, g, path));
   const uint32_t fallback = uint32_t(m.materials.size());
   bool fallback_used = false, skipped = false;
   size_t total = 0;
@@ -213,7 +236,9 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
     if (size_t(n.mesh) >= g.meshes.size()) fail(path, "a node names no such mesh");
     const tinygltf::Mesh& mesh = g.meshes[size_t(n.mesh)];
     ModelGroup group;
-    group.name = !n.name.empty() ? n.name : !mesh.name.empty() ? mesh.name : "node " + std::to_string(it.node);
+    group.name = !n.name.empty()      ? n.name
+                 : !mesh.name.empty() ? mesh.name
+                                      : "node " + std::to_string(it.node);
     const bool mirrored = glm::determinant(world) < 0.0;
     for (const tinygltf::Primitive& p : mesh.primitives) {
       const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
@@ -223,7 +248,8 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
         continue;
       }
       const auto pos = p.attributes.find("POSITION");
-      if (pos == p.attributes.end()) fail(path, "a primitive of mesh '" + mesh.name + "' has no POSITION");
+      if (pos == p.attributes.end())
+        fail(path, "a primitive of mesh '" + mesh.name + "' has no POSITION");
       const View positions = view(g, pos->second, path, "POSITION");
       if (positions.components != 3 || positions.component != TINYGLTF_COMPONENT_TYPE_FLOAT) {
         fail(path, "POSITION must be float VEC3");
@@ -231,19 +257,22 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
       std::vector<uint32_t> index;
       if (p.indices >= 0) {
         const View iv = view(g, p.indices, path, "indices");
-        if (iv.components != 1 || iv.component == TINYGLTF_COMPONENT_TYPE_FLOAT) fail(path, "indices must be unsigned integers");
+        if (iv.components != 1 || iv.component == TINYGLTF_COMPONENT_TYPE_FLOAT)
+          fail(path, "indices must be unsigned integers");
         index.reserve(iv.count);
         for (size_t i = 0; i < iv.count; ++i) {
           const double k = component(iv, i, 0);
-          if (!(k < double(positions.count))) fail(path, "an index past the vertices of mesh '" + mesh.name + "'");
+          if (!(k < double(positions.count)))
+            fail(path, "an index past the vertices of mesh '" + mesh.name + "'");
           index.push_back(uint32_t(k));
         }
       } else {
         for (size_t i = 0; i < positions.count; ++i) index.push_back(uint32_t(i));
       }
       auto corner = [&](uint32_t i) {
-        const glm::dvec4 q = world * glm::dvec4(component(positions, i, 0), component(positions, i, 1),
-                                                component(positions, i, 2), 1.0);
+        const glm::dvec4 q =
+            world * glm::dvec4(component(positions, i, 0), component(positions, i, 1),
+                               component(positions, i, 2), 1.0);
         return Vec3(q);
       };
       const bool known = p.material >= 0 && size_t(p.material) < m.materials.size();
@@ -253,7 +282,8 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
         std::array<Vec3, 3> t{corner(a), corner(b), corner(d)};
         if (mirrored) std::swap(t[1], t[2]);  // a mirroring transform turns the front over
         for (const Vec3& v : t) {
-          if (!glm::all(glm::lessThan(glm::abs(v), Vec3(3e38f)))) fail(path, "a vertex is not finite after its transform");
+          if (!glm::all(glm::lessThan(glm::abs(v), Vec3(3e38f))))
+            fail(path, "a vertex is not finite after its transform");
         }
         group.triangles.push_back(t);
         group.material.push_back(material);
@@ -263,8 +293,10 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
         for (size_t i = 0; i + 2 < n3; i += 3) emit(index[i], index[i + 1], index[i + 2]);
       } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
         for (size_t i = 0; i + 2 < n3; ++i) {
-          if (i % 2 == 0) emit(index[i], index[i + 1], index[i + 2]);
-          else emit(index[i + 1], index[i], index[i + 2]);
+          if (i % 2 == 0)
+            emit(index[i], index[i + 1], index[i + 2]);
+          else
+            emit(index[i + 1], index[i], index[i + 2]);
         }
       } else {
         for (size_t i = 1; i + 1 < n3; ++i) emit(index[0], index[i], index[i + 1]);

@@ -30,8 +30,9 @@ SceneDescription model_to_scene(const Model& m, const ModelOptions& o) {
   for (const ModelMaterial& mm : m.materials) {
     Material mat{mm.reflectance, mm.emission};
     if (glm::any(glm::greaterThan(mat.reflectance, Vec3(1.0f)))) {
-      warn(mm.loc, "material '" + mm.name + "' reflects more than it receives (Kd above 1); "
-                   "clamped to 1");
+      warn(mm.loc, "material '" + mm.name +
+                       "' reflects more than it receives (Kd above 1); "
+                       "clamped to 1");
       mat.reflectance = glm::min(mat.reflectance, Vec3(1.0f));
     }
     for (size_t r = 0; r < o.emit.size(); ++r) {
@@ -47,8 +48,8 @@ SceneDescription model_to_scene(const Model& m, const ModelOptions& o) {
   for (const ModelMaterial& mm : m.materials) names += (names.empty() ? "" : ", ") + mm.name;
   for (size_t r = 0; r < o.emit.size(); ++r) {
     if (rule_uses[r] == 0) {
-      throw Error(SourceLoc{m.path}, "--emit '" + o.emit[r].pattern + "' matches no material (" +
-                                         names + ")");
+      throw Error(SourceLoc{m.path},
+                  "--emit '" + o.emit[r].pattern + "' matches no material (" + names + ")");
     }
   }
 
@@ -92,7 +93,8 @@ SceneDescription model_to_scene(const Model& m, const ModelOptions& o) {
   if (!emits && o.require_emission) {
     throw Error(SourceLoc{m.path},
                 "nothing in this model emits light: name the lamps' materials with --emit, "
-                "e.g. --emit '" + (m.materials.empty() ? std::string("*") : m.materials[0].name) +
+                "e.g. --emit '" +
+                    (m.materials.empty() ? std::string("*") : m.materials[0].name) +
                     "=10' (materials: " + names + ")");
   }
   return d;

@@ -89,8 +89,8 @@ Model parse_obj_text(std::string_view obj, std::string_view mtl, const std::stri
       if (const std::optional<Vec3> mean = mean_texture_colour(tex.string())) {
         mat.reflectance *= *mean;
       } else {
-        warn(SourceLoc{path}, "material '" + t.name + "': cannot read its texture " +
-                                  tex.string() + "; using Kd alone");
+        warn(SourceLoc{path}, "material '" + t.name + "': cannot read its texture " + tex.string() +
+                                  "; using Kd alone");
       }
     }
     bool bad = false;
@@ -99,7 +99,8 @@ Model parse_obj_text(std::string_view obj, std::string_view mtl, const std::stri
              !(mat.emission[c] >= 0.0f && std::isfinite(mat.emission[c]));
     }
     if (bad) {
-      throw Error(SourceLoc{path}, "material '" + t.name + "' has a negative or non-finite Kd or Ke");
+      throw Error(SourceLoc{path},
+                  "material '" + t.name + "' has a negative or non-finite Kd or Ke");
     }
     m.materials.push_back(std::move(mat));
   }
@@ -123,8 +124,9 @@ Model parse_obj_text(std::string_view obj, std::string_view mtl, const std::stri
                                            std::to_string(int64_t(v) + 1) + " of " +
                                            std::to_string(nv));
         }
-        tri[k] = Vec3(float(attrib.vertices[3 * size_t(v)]), float(attrib.vertices[3 * size_t(v) + 1]),
-                      float(attrib.vertices[3 * size_t(v) + 2]));
+        tri[k] =
+            Vec3(float(attrib.vertices[3 * size_t(v)]), float(attrib.vertices[3 * size_t(v) + 1]),
+                 float(attrib.vertices[3 * size_t(v) + 2]));
       }
       at += n;
       if (!ok) continue;  // triangulated: only degenerate faces (fewer than 3) remain
@@ -149,7 +151,9 @@ Model read_obj_file(const std::string& path, const SourceLoc& requested_at) {
   std::istringstream lines(obj);
   std::string line;
   for (int number = 1; std::getline(lines, line); ++number) {
-    if (line.rfind("mtllib", 0) != 0 || line.size() < 7 || !std::isspace(static_cast<unsigned char>(line[6]))) continue;
+    if (line.rfind("mtllib", 0) != 0 || line.size() < 7 ||
+        !std::isspace(static_cast<unsigned char>(line[6])))
+      continue;
     std::istringstream names(line.substr(7));
     for (std::string name; names >> name;) {
       const fs::path p = folder / name;

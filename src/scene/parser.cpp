@@ -20,10 +20,10 @@ namespace rad {
 namespace {
 
 constexpr std::array<std::string_view, 19> kKeywords = {
-    "Object",       "Assembly", "Composite", "Pure",      "Reflectivity",    "Color",
-    "Emission",     "File",     "Data",      "Copy",      "CastsShadows",    "ReceivesShadows",
-    "Lights",       "Yes",      "No",        "Translate", "Rotate",          "Scale",
-    "Model"};
+    "Object",       "Assembly",        "Composite", "Pure", "Reflectivity",
+    "Color",        "Emission",        "File",      "Data", "Copy",
+    "CastsShadows", "ReceivesShadows", "Lights",    "Yes",  "No",
+    "Translate",    "Rotate",          "Scale",     "Model"};
 constexpr std::array<const char*, 3> kChannels = {"red", "green", "blue"};
 
 bool is_keyword(std::string_view word) {
@@ -165,7 +165,8 @@ class Parser {
         }
       }
       if (copy_of < 0) {
-        throw Error(original.loc, "no object \"" + original.text + "\" is defined before this copy");
+        throw Error(original.loc,
+                    "no object \"" + original.text + "\" is defined before this copy");
       }
       k = scene_.objects[size_t(copy_of)].kind;
     } else if (is_word(kind, "Model")) {
@@ -183,8 +184,10 @@ class Parser {
     } else if (is_word(kind, "Pure")) {
       k = ObjectKind::Pure;
     } else {
-      fail_expected(kind, in_composite ? "'Pure' or 'Copy'" : "'Assembly', 'Composite', 'Pure', 'Copy' or 'Model'",
-                    true);
+      fail_expected(
+          kind,
+          in_composite ? "'Pure' or 'Copy'" : "'Assembly', 'Composite', 'Pure', 'Copy' or 'Model'",
+          true);
     }
     if (in_composite && k != ObjectKind::Pure) {
       throw Error(kind.loc, "a Composite holds only Pures, but \"" + name + "\" is " +
@@ -238,7 +241,8 @@ class Parser {
       scene_.objects.push_back(std::move(c));
       complete_.push_back(1);
     }
-    for (int32_t child : m.objects[0].children) scene_.objects[size_t(id)].children.push_back(child + base);
+    for (int32_t child : m.objects[0].children)
+      scene_.objects[size_t(id)].children.push_back(child + base);
     if (scene_.objects[size_t(id)].children.empty()) {
       throw Error(file.loc, "the model '" + file.text + "' has no triangles");
     }
@@ -281,8 +285,7 @@ class Parser {
         tokens_.next();
       } else {
         if (body && !is_symbol(t, '{')) {
-          fail_expected(t, "a transform, 'CastsShadows', 'ReceivesShadows', 'Lights' or '{'",
-                        true);
+          fail_expected(t, "a transform, 'CastsShadows', 'ReceivesShadows', 'Lights' or '{'", true);
         }
         return f;
       }
@@ -314,7 +317,8 @@ class Parser {
       where[1] = where[2] = where[0];
     }
     for (int k = 0; k < 3; ++k) {
-      if (!(t.v[k] != 0.0)) throw Error(where[size_t(k)].loc, "a scale factor of 0 flattens the object");
+      if (!(t.v[k] != 0.0))
+        throw Error(where[size_t(k)].loc, "a scale factor of 0 flattens the object");
     }
     return t;
   }
@@ -392,7 +396,8 @@ class Parser {
         // A model's triangles, all of them, with this Pure's material (its own are ignored).
         Model model = read_model_file(full.string(), file.loc);
         for (ModelGroup& group : model.groups) {
-          pure.triangles.insert(pure.triangles.end(), group.triangles.begin(), group.triangles.end());
+          pure.triangles.insert(pure.triangles.end(), group.triangles.begin(),
+                                group.triangles.end());
           pure.triangle_locs.insert(pure.triangle_locs.end(), group.triangle_locs.begin(),
                                     group.triangle_locs.end());
         }
@@ -438,8 +443,8 @@ class Parser {
   }
 
   Tokenizer tokens_;
-  std::vector<char> complete_;  // per object: parsed to its end (a copy may name it)
-  int depth_ = 0;  // objects open around the one being parsed
+  std::vector<char> complete_;             // per object: parsed to its end (a copy may name it)
+  int depth_ = 0;                          // objects open around the one being parsed
   static constexpr int kMaxNesting = 256;  // real scenes nest a few deep; ASan frames are large
   SceneDescription scene_;
 };

@@ -31,10 +31,18 @@ std::optional<Type> parse_type(const std::string& s) {
 
 size_t size_of(Type t) {
   switch (t) {
-    case Type::I8: case Type::U8: return 1;
-    case Type::I16: case Type::U16: return 2;
-    case Type::I32: case Type::U32: case Type::F32: return 4;
-    case Type::F64: return 8;
+    case Type::I8:
+    case Type::U8:
+      return 1;
+    case Type::I16:
+    case Type::U16:
+      return 2;
+    case Type::I32:
+    case Type::U32:
+    case Type::F32:
+      return 4;
+    case Type::F64:
+      return 8;
   }
   return 1;
 }
@@ -70,14 +78,40 @@ class Body {
     const bool swap = (format_ == Format::Big) == (std::endian::native == std::endian::little);
     if (swap) std::reverse(raw, raw + n);
     switch (t) {
-      case Type::I8: return double(int8_t(raw[0]));
-      case Type::U8: return double(raw[0]);
-      case Type::I16: { int16_t v; std::memcpy(&v, raw, 2); return v; }
-      case Type::U16: { uint16_t v; std::memcpy(&v, raw, 2); return v; }
-      case Type::I32: { int32_t v; std::memcpy(&v, raw, 4); return v; }
-      case Type::U32: { uint32_t v; std::memcpy(&v, raw, 4); return v; }
-      case Type::F32: { float v; std::memcpy(&v, raw, 4); return v; }
-      case Type::F64: { double v; std::memcpy(&v, raw, 8); return v; }
+      case Type::I8:
+        return double(int8_t(raw[0]));
+      case Type::U8:
+        return double(raw[0]);
+      case Type::I16: {
+        int16_t v;
+        std::memcpy(&v, raw, 2);
+        return v;
+      }
+      case Type::U16: {
+        uint16_t v;
+        std::memcpy(&v, raw, 2);
+        return v;
+      }
+      case Type::I32: {
+        int32_t v;
+        std::memcpy(&v, raw, 4);
+        return v;
+      }
+      case Type::U32: {
+        uint32_t v;
+        std::memcpy(&v, raw, 4);
+        return v;
+      }
+      case Type::F32: {
+        float v;
+        std::memcpy(&v, raw, 4);
+        return v;
+      }
+      case Type::F64: {
+        double v;
+        std::memcpy(&v, raw, 8);
+        return v;
+      }
     }
     return 0.0;
   }
@@ -99,7 +133,8 @@ class Body {
     double v = 0.0;
     const auto r = std::from_chars(b_.data() + at_, b_.data() + end, v);
     if (r.ec != std::errc() || r.ptr != b_.data() + end) {
-      fail("'" + std::string(b_.substr(at_, std::min<size_t>(end - at_, 40))) + "' is not a number");
+      fail("'" + std::string(b_.substr(at_, std::min<size_t>(end - at_, 40))) +
+           "' is not a number");
     }
     at_ = end;
     return v;
@@ -136,10 +171,14 @@ PlyData parse_ply_data(std::string_view bytes, const std::string& path) {
     if (word == "format") {
       std::string f;
       words >> f;
-      if (f == "ascii") format = Format::Ascii;
-      else if (f == "binary_little_endian") format = Format::Little;
-      else if (f == "binary_big_endian") format = Format::Big;
-      else throw Error(loc, "unknown PLY format '" + f + "'");
+      if (f == "ascii")
+        format = Format::Ascii;
+      else if (f == "binary_little_endian")
+        format = Format::Little;
+      else if (f == "binary_big_endian")
+        format = Format::Big;
+      else
+        throw Error(loc, "unknown PLY format '" + f + "'");
     } else if (word == "element") {
       Element e;
       if (!(words >> e.name >> e.count)) throw Error(loc, "expected 'element NAME COUNT'");
@@ -153,7 +192,8 @@ PlyData parse_ply_data(std::string_view bytes, const std::string& path) {
         std::string ct, vt;
         words >> ct >> vt >> p.name;
         const auto c = parse_type(ct), v = parse_type(vt);
-        if (!c || !v || *c == Type::F32 || *c == Type::F64) throw Error(loc, "bad list property types");
+        if (!c || !v || *c == Type::F32 || *c == Type::F64)
+          throw Error(loc, "bad list property types");
         p.list = true, p.count_type = *c, p.type = *v;
       } else {
         const auto v = parse_type(t);
@@ -172,9 +212,11 @@ PlyData parse_ply_data(std::string_view bytes, const std::string& path) {
   Body in(bytes, body, *format, path, number + 1);
   for (const Element& e : elements) {
     // Each item takes at least one byte (binary) or two characters (ASCII) per property.
-    const size_t least = std::max<size_t>(e.properties.size(), 1) * (*format == Format::Ascii ? 2 : 1);
+    const size_t least =
+        std::max<size_t>(e.properties.size(), 1) * (*format == Format::Ascii ? 2 : 1);
     if (e.count > in.left() / least) {
-      in.fail("element '" + e.name + "' claims " + std::to_string(e.count) + " items, more than the file holds");
+      in.fail("element '" + e.name + "' claims " + std::to_string(e.count) +
+              " items, more than the file holds");
     }
     const bool is_vertex = e.name == "vertex", is_face = e.name == "face";
     std::vector<std::vector<float>*> columns;
@@ -189,14 +231,16 @@ PlyData parse_ply_data(std::string_view bytes, const std::string& path) {
         if (!prop.list) {
           const double v = in.value(prop.type);
           if (columns[k]) {
-            if (!std::isfinite(v) || std::abs(v) > 3e38) in.fail("vertex " + std::to_string(i) + " is not finite");
+            if (!std::isfinite(v) || std::abs(v) > 3e38)
+              in.fail("vertex " + std::to_string(i) + " is not finite");
             columns[k]->push_back(float(v));
           }
           continue;
         }
         const double count = in.value(prop.count_type);
         if (!(count >= 0) || count > double(in.left())) in.fail("a list longer than the file");
-        const bool indices = is_face && (prop.name == "vertex_indices" || prop.name == "vertex_index");
+        const bool indices =
+            is_face && (prop.name == "vertex_indices" || prop.name == "vertex_index");
         for (size_t n = size_t(count); n > 0; --n) {
           const double v = in.value(prop.type);
           if (!indices) continue;
@@ -216,13 +260,15 @@ PlyData parse_ply_data(std::string_view bytes, const std::string& path) {
 
 const std::vector<float>& PlyData::column(const std::string& name, const std::string& path) const {
   const auto it = vertex.find(name);
-  if (it == vertex.end()) throw Error(SourceLoc{path}, "the vertices have no property '" + name + "'");
+  if (it == vertex.end())
+    throw Error(SourceLoc{path}, "the vertices have no property '" + name + "'");
   return it->second;
 }
 
 Model parse_ply(std::string_view bytes, const std::string& path) {
   const PlyData d = parse_ply_data(bytes, path);
-  const std::vector<float>&x = d.column("x", path), &y = d.column("y", path), &z = d.column("z", path);
+  const std::vector<float>&x = d.column("x", path), &y = d.column("y", path),
+        &z = d.column("z", path);
   const auto corner = [&](uint32_t i) { return Vec3(x[i], y[i], z[i]); };
   Model m;
   m.path = path;

@@ -17,7 +17,7 @@ namespace rad {
 
 struct ServeConfig {
   std::string scene;
-  ModelOptions model;  // for a model file as the scene
+  ModelOptions model;                      // for a model file as the scene
   std::optional<HierarchyMode> hierarchy;  // none: default_hierarchy_mode
   ServerOptions server;
   SessionOptions session;

@@ -207,36 +207,40 @@ struct Server::Impl {
   void events(httplib::Response& res) {
     if (streams.fetch_add(1) >= max_streams) {
       streams.fetch_sub(1);
-      send_error(res, 503, fmt::format("too many event streams open ({}); close a page", max_streams));
+      send_error(res, 503,
+                 fmt::format("too many event streams open ({}); close a page", max_streams));
       return;
     }
     res.set_header("Cache-Control", "no-store");
     auto last = std::make_shared<uint64_t>(0);
     auto first = std::make_shared<bool>(true);
-    res.set_chunked_content_provider("text/event-stream", [this, last, first](
-                                                              size_t, httplib::DataSink& sink) {
-      if (*first) {
-        *first = false;
-        static constexpr char kRetry[] = "retry: 1000\n\n";
-        if (!sink.write(kRetry, sizeof kRetry - 1)) return false;
-      }
-      const auto give_up = Clock::now() + kKeepAlive;
-      while (!stopping && !session.stopped()) {
-        const auto snap = session.wait_for_snapshot(*last, kEventPoll);
-        if (snap->version > *last) {
-          *last = snap->version;
-          const std::string ev = fmt::format("id: {}\nevent: snapshot\ndata: {}\n\n", snap->version,
-                                             status_json(session.hierarchy(), *snap));
-          return sink.write(ev.data(), ev.size());
-        }
-        if (Clock::now() >= give_up) {
-          static constexpr char kPing[] = ": keep-alive\n\n";
-          return sink.write(kPing, sizeof kPing - 1);  // false once the client is gone
-        }
-      }
-      sink.done();
-      return true;
-    }, [this](bool) { streams.fetch_sub(1); });
+    res.set_chunked_content_provider(
+        "text/event-stream",
+        [this, last, first](size_t, httplib::DataSink& sink) {
+          if (*first) {
+            *first = false;
+            static constexpr char kRetry[] = "retry: 1000\n\n";
+            if (!sink.write(kRetry, sizeof kRetry - 1)) return false;
+          }
+          const auto give_up = Clock::now() + kKeepAlive;
+          while (!stopping && !session.stopped()) {
+            const auto snap = session.wait_for_snapshot(*last, kEventPoll);
+            if (snap->version > *last) {
+              *last = snap->version;
+              const std::string ev =
+                  fmt::format("id: {}\nevent: snapshot\ndata: {}\n\n", snap->version,
+                              status_json(session.hierarchy(), *snap));
+              return sink.write(ev.data(), ev.size());
+            }
+            if (Clock::now() >= give_up) {
+              static constexpr char kPing[] = ": keep-alive\n\n";
+              return sink.write(kPing, sizeof kPing - 1);  // false once the client is gone
+            }
+          }
+          sink.done();
+          return true;
+        },
+        [this](bool) { streams.fetch_sub(1); });
   }
 
   void export_file(const ExportRequest& r, httplib::Response& res) {

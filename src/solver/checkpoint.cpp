@@ -1,8 +1,9 @@
 #include "solver/checkpoint.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cstring>
-#include <fmt/format.h>
 #include <fstream>
 #include <iterator>
 #include <type_traits>
@@ -75,7 +76,8 @@ class Reader {
 };
 
 void write_lanes(Writer& w, const SampleLanes& l) {
-  for (const auto* v : {&l.x, &l.y, &l.z, &l.nx, &l.ny, &l.nz, &l.area, &l.r, &l.g, &l.b}) w.vec(*v);
+  for (const auto* v : {&l.x, &l.y, &l.z, &l.nx, &l.ny, &l.nz, &l.area, &l.r, &l.g, &l.b})
+    w.vec(*v);
 }
 void read_lanes(Reader& r, SampleLanes& l) {
   for (auto* v : {&l.x, &l.y, &l.z, &l.nx, &l.ny, &l.nz, &l.area, &l.r, &l.g, &l.b}) r.vec(*v);
@@ -105,9 +107,9 @@ struct HistoryRecord {
 };
 
 void write_shot(Writer& w, const ShotSource& s) {
-  w.pod(ShotHeader{uint64_t(s.sample_count), s.cluster, s.planar, s.major, s.centroid, s.axis, s.mean_unshot, s.cone_cos,
-                   s.cone_sin, s.offset_lo, s.offset_hi, s.area, s.extent, s.near_distance,
-                   s.single_distance, s.far_distance, s.box});
+  w.pod(ShotHeader{uint64_t(s.sample_count), s.cluster, s.planar, s.major, s.centroid, s.axis,
+                   s.mean_unshot, s.cone_cos, s.cone_sin, s.offset_lo, s.offset_hi, s.area,
+                   s.extent, s.near_distance, s.single_distance, s.far_distance, s.box});
   w.vec(s.edge_a), w.vec(s.edge_b), w.vec(s.interior);
   write_lanes(w, s.sample);
   w.vec(s.end_x), w.vec(s.end_y), w.vec(s.end_z);
@@ -249,12 +251,14 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   std::memcpy(header, data.data() + sizeof kMagic + sizeof format, sizeof header);
   if (format != kFormat) {
     throw Error(SourceLoc{path}, fmt::format("checkpoint format {} (this rad reads {}); remove "
-                                             "it to start again", format, kFormat));
+                                             "it to start again",
+                                             format, kFormat));
   }
   if (header[1] != data.size() - kHeader ||
       Fingerprint().bytes(data.data() + kHeader, data.size() - kHeader).value() != header[2]) {
-    throw Error(SourceLoc{path}, "corrupt checkpoint: its checksum does not match (torn or "
-                                 "damaged file); remove it to start again");
+    throw Error(SourceLoc{path},
+                "corrupt checkpoint: its checksum does not match (torn or "
+                "damaged file); remove it to start again");
   }
   if (header[0] != fingerprint) {
     throw Error(SourceLoc{path},

@@ -35,8 +35,8 @@ struct Clusters {
   /// outline edge, as inside a dome).
   std::vector<uint32_t> interior_first;  // size() + 1 entries
   std::vector<Vec3> interior;
-  std::vector<Vec3> centroid;        // area centroid
-  std::vector<Vec3> axis;            // unit area-weighted mean normal
+  std::vector<Vec3> centroid;  // area centroid
+  std::vector<Vec3> axis;      // unit area-weighted mean normal
   std::vector<float> area;
   std::vector<float> extent;  // box diagonal
   std::vector<Aabb> box;

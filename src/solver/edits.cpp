@@ -5,7 +5,6 @@
 #include <tbb/parallel_for.h>
 
 #include "core/denormals.h"
-
 #include "mesh/subdivide.h"
 #include "solver/refine.h"
 #include "solver/shoot.h"

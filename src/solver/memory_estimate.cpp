@@ -29,7 +29,7 @@ double worst_case_growth_bytes(const SolverState& s) {
             const float longest = longest_edge(m, e);
             if (!(longest >= split_edge)) return;
             const double d = std::floor(std::log2(double(longest) / double(split_edge))) + 1.0;
-            const double side = std::exp2(d);                     // edge segments per side
+            const double side = std::exp2(d);                         // edge segments per side
             const double vertices = (side + 1) * (side + 2) / 2 - 3;  // all new
             const double elements = (std::exp2(2 * d + 2) - 1) / 3 - 1;
             bytes += vertices * (kVertexBytes + kMidpointBytes) + elements * kElementBytes;

@@ -4,7 +4,6 @@
 #include <tbb/parallel_for.h>
 
 #include "core/denormals.h"
-
 #include "mesh/subdivide.h"
 #include "solver/shoot.h"
 
@@ -129,10 +128,9 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
           mid.shot = Vec3(0.0f);
           continue;
         }
-        const Vec3 dh =
-            gather_from_source(mid.position, tris.normal[x.polygon],
-                               polygon_centroid(tris, x.polygon), *src, vis,
-                               receiver_settings(settings, s, x.polygon), sc);
+        const Vec3 dh = gather_from_source(mid.position, tris.normal[x.polygon],
+                                           polygon_centroid(tris, x.polygon), *src, vis,
+                                           receiver_settings(settings, s, x.polygon), sc);
         Vec3 major_h(0.0f);
         regather_shots(s, mid.position, x.polygon, true, vis, settings, sc, &major_h);
         // Earlier minor shots: interpolated from the edge's ends (SPEC §5).

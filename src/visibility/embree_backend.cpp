@@ -61,7 +61,8 @@ bool surely_hit(const RTCFilterFunctionNArguments* args, unsigned i, float clear
   const float edge = clearance * longest_edge;
   const float lo = std::min({u, v, w});
   return nd * nd >= 0.04f * ng2 * d2 && lo > 0.0f && lo * lo * ng2 >= edge * edge &&
-         t * t * d2 >= clearance * clearance && (1.0f - t) * (1.0f - t) * d2 >= clearance * clearance;
+         t * t * d2 >= clearance * clearance &&
+         (1.0f - t) * (1.0f - t) * d2 >= clearance * clearance;
 }
 
 void keep_shared_test_hits(const RTCFilterFunctionNArguments* args) {
@@ -90,7 +91,8 @@ std::array<Vec3, 3> grown(const std::array<Vec3, 3>& t, double margin) {
   const double inradius = 2.0 * area / perimeter;
   const double scale = inradius > margin ? 1.0 + margin / inradius : 2.0;
   std::array<Vec3, 3> out;
-  for (int k = 0; k < 3; ++k) out[size_t(k)] = Vec3(incentre + (DVec3(t[size_t(k)]) - incentre) * scale);
+  for (int k = 0; k < 3; ++k)
+    out[size_t(k)] = Vec3(incentre + (DVec3(t[size_t(k)]) - incentre) * scale);
   return out;
 }
 
@@ -110,7 +112,6 @@ struct ErrorSink {
     }
   }
 };
-
 
 class EmbreeBackend final : public VisibilityBackend {
  public:
@@ -154,7 +155,9 @@ class EmbreeBackend final : public VisibilityBackend {
       float longest = 0.0f;
       for (uint32_t i = 0; i < o.triangle_count; ++i) {
         const auto corners = grown(h.triangles.corners[o.first_triangle + i], margin_);
-        for (int k = 0; k < 3; ++k) longest = std::max(longest, glm::length(corners[size_t(k)] - corners[size_t((k + 1) % 3)]));
+        for (int k = 0; k < 3; ++k)
+          longest =
+              std::max(longest, glm::length(corners[size_t(k)] - corners[size_t((k + 1) % 3)]));
         for (int k = 0; k < 3; ++k) {
           vertices[9 * i + 3 * k + 0] = corners[k].x;
           vertices[9 * i + 3 * k + 1] = corners[k].y;
@@ -350,7 +353,7 @@ class EmbreeBackend final : public VisibilityBackend {
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   bool packets_;
-  std::vector<TriangleRecord> records_;     // the shared test's triangles, by triangle id
+  std::vector<TriangleRecord> records_;      // the shared test's triangles, by triangle id
   std::vector<GeometryData> geometry_data_;  // per Embree geometry; reserved, never moves
   float margin_;
 };

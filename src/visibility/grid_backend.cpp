@@ -27,8 +27,7 @@ constexpr uint32_t kMailboxSize = 32;
 
 class GridBackend final : public VisibilityBackend {
  public:
-  GridBackend(const Hierarchy& h, double cells_per_triangle)
-      : records_(make_triangle_records(h)) {
+  GridBackend(const Hierarchy& h, double cells_per_triangle) : records_(make_triangle_records(h)) {
     Vec3 scene_abs = glm::max(glm::abs(h.bounds.lo), glm::abs(h.bounds.hi));
     float scene_size =
         h.bounds.empty() ? 0.0f : glm::max(h.bounds.diagonal(), max_component(scene_abs));

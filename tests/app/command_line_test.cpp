@@ -3,16 +3,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
 #include <chrono>
 #include <csignal>
-#include <thread>
-
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
+#include <thread>
 
 #include "app/cli.h"
 #include "core/error.h"
@@ -27,7 +26,8 @@ struct RadRun {
 };
 
 RadRun run_rad(const std::string& args) {
-  const fs::path err_file = fs::temp_directory_path() / ("rad_test_err_" + std::to_string(getpid()));
+  const fs::path err_file =
+      fs::temp_directory_path() / ("rad_test_err_" + std::to_string(getpid()));
   const std::string cmd = std::string(RAD_BINARY_DIR "/rad ") + args + " 2>" + err_file.string();
   RadRun r{};
   FILE* p = popen(cmd.c_str(), "r");
@@ -72,8 +72,9 @@ TEST(CommandLine, CheckFailsOnEveryBrokenSceneWithFileLineAndColumn) {
     std::getline(f, first);
     std::smatch m;
     ASSERT_TRUE(std::regex_match(first, m, expect_re)) << entry.path();
-    const std::string file = m[1].matched ? (kScenes / "bad" / m[1].str()).lexically_normal().string()
-                                          : entry.path().string();
+    const std::string file = m[1].matched
+                                 ? (kScenes / "bad" / m[1].str()).lexically_normal().string()
+                                 : entry.path().string();
     const std::string where = file + ":" + m[2].str() + ":" + m[3].str() + ": error: ";
     const RadRun r = run_rad("--check " + entry.path().string());
     EXPECT_NE(r.code, 0) << entry.path();
@@ -100,8 +101,8 @@ TEST(CommandLine, FailedRunLeavesAnExistingOutputUnchanged) {
 
 TEST(CommandLine, SolvesWithTheOriginalsFlagsAndWritesAPly) {
   const fs::path out = fs::temp_directory_path() / "rad_test_squares.ply";
-  const RadRun r = run_rad("-noshadows -minsize 0.1 " + (kScenes / "parallel_squares.des").string() +
-                        " " + out.string());
+  const RadRun r = run_rad("-noshadows -minsize 0.1 " +
+                           (kScenes / "parallel_squares.des").string() + " " + out.string());
   ASSERT_EQ(r.code, 0) << r.err;
   for (const char* stage : {"Reading description file...", "Initializing...",
                             "Starting Computation", "Writing results in file"}) {
@@ -235,9 +236,8 @@ TEST(CommandLine, ImageBeforeThePositionalsTakesOneValue) {
   const fs::path png = fs::temp_directory_path() / "rad_test_first.png";
   const fs::path png2 = fs::temp_directory_path() / "rad_test_second.png";
   const fs::path ply = fs::temp_directory_path() / "rad_test_after_image.ply";
-  const RadRun r = run_rad("-q --size 16x16 --image " + png.string() + " --image " +
-                           png2.string() + " " + (kScenes / "parallel_squares.des").string() +
-                           " " + ply.string());
+  const RadRun r = run_rad("-q --size 16x16 --image " + png.string() + " --image " + png2.string() +
+                           " " + (kScenes / "parallel_squares.des").string() + " " + ply.string());
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(read_file(png).rfind("\x89PNG", 0), 0u);
   EXPECT_EQ(read_file(png2).rfind("\x89PNG", 0), 0u);
@@ -314,8 +314,8 @@ TEST(CommandLine, KilledRunResumesFromItsCheckpointToTheSameBytes) {
   const std::string ckpt = (dir / "run.ckpt").string();
   ASSERT_EQ(run_rad("-q --max-shots 30 " + scene + " " + whole).code, 0);
 
-  const std::vector<std::string> args{"-q", "--max-shots", "30", "--checkpoint", ckpt,
-                                      "--checkpoint-every", "0", scene, part};
+  const std::vector<std::string> args{
+      "-q", "--max-shots", "30", "--checkpoint", ckpt, "--checkpoint-every", "0", scene, part};
   const pid_t pid = spawn_rad(args);
   ASSERT_TRUE(wait_for_file(ckpt));
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
@@ -346,9 +346,9 @@ TEST(CommandLine, SigintAndSigtermWriteThePartialSolutionAndTheCheckpoint) {
     fs::create_directories(dir);
     const std::string ckpt = (dir / "run.ckpt").string(), ply = (dir / "out.ply").string();
     const std::string json = (dir / "stats.json").string();
-    const pid_t pid = spawn_rad({"-q", "--checkpoint", ckpt, "--checkpoint-every", "0",
-                                 "--stats-json", json, (kScenes / "cornell_box.des").string(),
-                                 ply});
+    const pid_t pid =
+        spawn_rad({"-q", "--checkpoint", ckpt, "--checkpoint-every", "0", "--stats-json", json,
+                   (kScenes / "cornell_box.des").string(), ply});
     ASSERT_TRUE(wait_for_file(ckpt));
     kill(pid, sig);
     int status = 0;
@@ -367,8 +367,8 @@ TEST(CommandLine, SigintAndSigtermWriteThePartialSolutionAndTheCheckpoint) {
 // rad --cross-check: the two backends' rays against brute force, the rays the solve cast, the
 // vertices and the radiosity, and "agree" with status 0.
 TEST(CommandLine, CrossCheckReportsEveryLevelAndAgreesOnABundledScene) {
-  const RadRun r = run_rad("--cross-check grid --max-shots 3 " +
-                           (kScenes / "parallel_squares.des").string());
+  const RadRun r =
+      run_rad("--cross-check grid --max-shots 3 " + (kScenes / "parallel_squares.des").string());
   EXPECT_EQ(r.code, 0) << r.out << r.err;
   for (const char* line : {"rays, embree against brute force", "rays, grid against brute force",
                            "rays the embree solve cast", "vertices: embree", "radiosity over"}) {
@@ -383,15 +383,18 @@ TEST(CommandLine, CrossCheckReportsEveryLevelAndAgreesOnABundledScene) {
 TEST(CommandLine, SolveThatCouldOutgrowTheMemoryLimitIsRefusedWithTheEstimate) {
   const fs::path out = fs::temp_directory_path() / "rad_test_memory.ply";
   fs::remove(out);
-  const RadRun r = run_rad("--max-memory 1M " + (kScenes / "cornell_box.des").string() + " " +
-                           out.string());
+  const RadRun r =
+      run_rad("--max-memory 1M " + (kScenes / "cornell_box.des").string() + " " + out.string());
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("this solve could need"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("--min-size"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("--max-memory"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out));
-  EXPECT_EQ(run_rad("--max-memory 12Q " + (kScenes / "cornell_box.des").string() + " " +
-                    out.string()).code, 105) << "a usage error (CLI11's validation status)";
+  EXPECT_EQ(
+      run_rad("--max-memory 12Q " + (kScenes / "cornell_box.des").string() + " " + out.string())
+          .code,
+      105)
+      << "a usage error (CLI11's validation status)";
 }
 
 // A model file is a scene: without an emitting material rad says which option makes one emit;
@@ -418,10 +421,10 @@ TEST(CommandLine, SolvesAnObjModelWhoseLampIsNamedByEmit) {
 TEST(CommandLine, HelpListsTheOptions) {
   const RadRun r = run_rad("--help");
   EXPECT_EQ(r.code, 0);
-  for (const char* opt : {"--backend", "--threads", "--samples", "--threshold", "--converge",
-                          "--max-shots", "--time-limit", "--stats-json", "--no-shadows",
-                          "--min-size", "--check", "--checkpoint", "--checkpoint-every", "--cross-check",
-                          "--max-memory", "--emit"}) {
+  for (const char* opt :
+       {"--backend", "--threads", "--samples", "--threshold", "--converge", "--max-shots",
+        "--time-limit", "--stats-json", "--no-shadows", "--min-size", "--check", "--checkpoint",
+        "--checkpoint-every", "--cross-check", "--max-memory", "--emit"}) {
     EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
   }
 }
@@ -449,7 +452,8 @@ TEST(CommandLine, ConvertTakesAModelWithoutLightsToADescriptionAndBack) {
 
 TEST(CommandLine, ConvertRefusesAnUnknownFormatAndTheSolversOptions) {
   const std::string scene = (kScenes / "parallel_squares.des").string();
-  const fs::path out = fs::temp_directory_path() / ("rad_convert_" + std::to_string(getpid()) + ".fbx");
+  const fs::path out =
+      fs::temp_directory_path() / ("rad_convert_" + std::to_string(getpid()) + ".fbx");
   RadRun r = run_rad("convert " + scene + " " + out.string());
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find(".fbx"), std::string::npos) << r.err;

@@ -1,11 +1,12 @@
 // Files that appear complete or not at all.
+#include "core/atomic_file.h"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 
-#include "core/atomic_file.h"
 #include "core/error.h"
 
 namespace rad {

@@ -1,7 +1,7 @@
 // The FNV-1a hash behind checkpoint fingerprints and checksums.
-#include <gtest/gtest.h>
-
 #include "core/fingerprint.h"
+
+#include <gtest/gtest.h>
 
 namespace rad {
 namespace {

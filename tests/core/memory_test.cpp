@@ -1,10 +1,11 @@
 // Memory figures of the process and the machine, and sizes as users write them.
+#include "core/memory.h"
+
 #include <gtest/gtest.h>
 
 #include <vector>
 
 #include "core/error.h"
-#include "core/memory.h"
 
 namespace rad {
 namespace {

@@ -16,8 +16,7 @@ TEST(Seams, MeasuresTheJumpAcrossAnEdgeSharedWithAnUnsplitNeighbour) {
   t.object = {0, 0};
   OutputMesh m;
   // Polygon 0: corners 0, 1, 2 and the edge's midpoint 3.
-  m.position = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5f, 0, 0},
-                {1, 0, 0}, {0, 0, 0}, {0, -1, 0}};
+  m.position = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5f, 0, 0}, {1, 0, 0}, {0, 0, 0}, {0, -1, 0}};
   m.radiosity = {Vec3(1), Vec3(1), Vec3(1), Vec3(1.5f, 1.25f, 1), Vec3(1), Vec3(1), Vec3(1)};
   m.display = m.radiosity;
   m.indices = {0, 3, 2, 3, 1, 2, 4, 5, 6};

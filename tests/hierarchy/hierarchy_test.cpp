@@ -236,8 +236,9 @@ TEST(Hierarchy, AMirroringCopyKeepsEveryTrianglesFront) {
 }
 
 TEST(Hierarchy, CopiesThatMultiplyBeyondTheLimitsAreRefused) {
-  std::string text = "\"s\"\nObject \"c0\" Pure { Reflectivity 0 Color <1 1 1> Emission 1 Data "
-                     "{ <0 0 0> <1 0 0> <0 1 0> } }\n";
+  std::string text =
+      "\"s\"\nObject \"c0\" Pure { Reflectivity 0 Color <1 1 1> Emission 1 Data "
+      "{ <0 0 0> <1 0 0> <0 1 0> } }\n";
   for (int i = 1; i <= 30; ++i) {  // each level doubles: 2^30 triangles
     text += "Object \"c" + std::to_string(i) + "\" Assembly { Object \"a\" Copy \"c" +
             std::to_string(i - 1) + "\" Object \"b\" Copy \"c" + std::to_string(i - 1) +
@@ -247,7 +248,8 @@ TEST(Hierarchy, CopiesThatMultiplyBeyondTheLimitsAreRefused) {
     build_hierarchy(parse_scene_text(text, "scene.des"), BuildLimits{1000, 100000, 256});
     FAIL() << "no error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("more than 1000 triangles"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("more than 1000 triangles"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -73,8 +73,8 @@ TEST(CornellReference, TessellatedBoxKeepsTheAnswer) {
   const std::vector<int32_t> face_polygon =
       assign_face_polygons(uncut.triangles, mesh.position, mesh.indices);
   const ComparisonReport r =
-      compare_to_reference({mesh.position, mesh.radiosity, mesh.indices, face_polygon},
-                           reference, emitting_polygons(uncut));
+      compare_to_reference({mesh.position, mesh.radiosity, mesh.indices, face_polygon}, reference,
+                           emitting_polygons(uncut));
   std::printf("Cornell box cut 4 x 4 (%zu triangles): %lld shots\n", h.triangles.size(),
               (long long)state.shots);
   std::fputs(format_report(r).c_str(), stdout);

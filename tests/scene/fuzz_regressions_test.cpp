@@ -23,7 +23,8 @@ TEST(RAD_FUZZ_SUITE, EveryKeptInputEndsInAResultOrOneError) {
     SCOPED_TRACE(e.path().string());
     // The target swallows rad::Error only: anything else thrown fails here, a crash fails the
     // run, and the sanitizer builds fail on any report.
-    EXPECT_NO_THROW(LLVMFuzzerTestOneInput(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()));
+    EXPECT_NO_THROW(
+        LLVMFuzzerTestOneInput(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()));
     ++inputs;
   }
   EXPECT_GE(inputs, 4) << dir;

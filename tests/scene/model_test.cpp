@@ -121,8 +121,9 @@ TEST_F(ModelFiles, NothingEmittingOrARuleMatchingNothingNamesTheOption) {
 }
 
 TEST_F(ModelFiles, ObjEmissionComesFromKeAndAMissingLibraryIsAWarning) {
-  const std::string obj = write("lit.obj", "mtllib nosuch.mtl\nmtllib lit.mtl\nv 0 0 0\nv 1 0 0\n"
-                                           "v 0 1 0\nusemtl Light\nf 1 2 3\n");
+  const std::string obj = write("lit.obj",
+                                "mtllib nosuch.mtl\nmtllib lit.mtl\nv 0 0 0\nv 1 0 0\n"
+                                "v 0 1 0\nusemtl Light\nf 1 2 3\n");
   write("lit.mtl", "newmtl Light\nKd 0 0 0\nKe 3 2 1\n");
   const SceneDescription d = read_scene_file(obj);
   ASSERT_EQ(d.objects.size(), 3u);
@@ -138,9 +139,10 @@ TEST_F(ModelFiles, BadObjFilesEndInOneError) {
 
 std::string ply_header(const char* format, int vertices, int faces) {
   return std::string("ply\nformat ") + format + " 1.0\ncomment a square\nelement vertex " +
-         std::to_string(vertices) + "\nproperty float x\nproperty float y\nproperty float z\n"
-         "property uchar red\nelement face " + std::to_string(faces) +
-         "\nproperty list uchar int vertex_indices\nend_header\n";
+         std::to_string(vertices) +
+         "\nproperty float x\nproperty float y\nproperty float z\n"
+         "property uchar red\nelement face " +
+         std::to_string(faces) + "\nproperty list uchar int vertex_indices\nend_header\n";
 }
 
 template <typename T>
@@ -154,7 +156,9 @@ void put(std::string& s, T v, bool big) {
 TEST_F(ModelFiles, PlyAsciiAndBinaryOfBothOrdersGiveTheSameTriangles) {
   const float v[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
   std::string ascii = ply_header("ascii", 4, 1);
-  for (auto& p : v) ascii += std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) + " 7\n";
+  for (auto& p : v)
+    ascii +=
+        std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) + " 7\n";
   ascii += "4 0 1 2 3\n";
   std::vector<Model> models{parse_ply(ascii, "sq.ply")};
   for (bool big : {false, true}) {
@@ -180,7 +184,8 @@ TEST_F(ModelFiles, BadPlyFilesEndInOneErrorWithoutAllocatingTheirCounts) {
   for (const std::string& bad :
        {huge, ply_header("ascii", 3, 1) + "0 0 0 1\n1 0 0 1\n0 1 0 1\n3 0 1 9\n",
         ply_header("ascii", 3, 1) + "0 0 0 1\n1 0 0 1\n", std::string("ply\nformat ascii 1.0\n"),
-        std::string("plyformat"), ply_header("ascii", 3, 1) + "0 0 0 1\n1 0 zero 1\n0 1 0 1\n3 0 1 2\n",
+        std::string("plyformat"),
+        ply_header("ascii", 3, 1) + "0 0 0 1\n1 0 zero 1\n0 1 0 1\n3 0 1 2\n",
         std::string("ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n")}) {
     EXPECT_THROW(parse_ply(bad, "bad.ply"), Error) << bad.substr(0, 60);
   }
@@ -189,8 +194,9 @@ TEST_F(ModelFiles, BadPlyFilesEndInOneErrorWithoutAllocatingTheirCounts) {
 TEST_F(ModelFiles, ADescriptionFileMayNameAModelAsAPuresGeometry) {
   write("room.mtl", kRoomMtl);
   write("room.obj", kRoomObj);
-  const std::string des = write("scene.des", "\"with a model\"\nObject \"all\" Pure { Reflectivity 0.5 "
-                                              "Color <1 1 1> Emission 1 File \"room.obj\" }\n");
+  const std::string des = write("scene.des",
+                                "\"with a model\"\nObject \"all\" Pure { Reflectivity 0.5 "
+                                "Color <1 1 1> Emission 1 File \"room.obj\" }\n");
   const Hierarchy h = build_hierarchy(parse_scene_file(des));
   EXPECT_EQ(h.triangles.size(), 6u);
   EXPECT_EQ(h.objects[0].material.emission, Vec3(1.0f));
@@ -229,8 +235,9 @@ Object "room B" Copy "room A" Translate <0 0 10>
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("bad.des:2:18"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(parse_scene_file(write("bad2.des", "\"b\"\nObject \"c\" Composite { Object \"m\" "
-                                                  "Model \"room.obj\" }\n")),
+  EXPECT_THROW(parse_scene_file(write("bad2.des",
+                                      "\"b\"\nObject \"c\" Composite { Object \"m\" "
+                                      "Model \"room.obj\" }\n")),
                Error);
 }
 
@@ -263,7 +270,8 @@ std::string quad_gltf(const std::string& extra_node = "") {
   const uint16_t idx[6] = {0, 1, 2, 0, 2, 3};
   buf.append(reinterpret_cast<const char*>(idx), sizeof idx);
   return R"({"asset": {"version": "2.0"}, "scene": 0,
-    "scenes": [{"nodes": [0, 1, 3)" + extra_node + R"(]}],
+    "scenes": [{"nodes": [0, 1, 3)" +
+         extra_node + R"(]}],
     "nodes": [{"name": "near", "mesh": 0, "translation": [0, 0, 1]},
               {"name": "group", "translation": [10, 0, 0], "children": [2]},
               {"name": "far", "mesh": 0, "scale": [2, 2, 2]},
@@ -301,13 +309,15 @@ TEST_F(ModelFiles, GltfNodeTransformsComposeAndInstancesAreFlattened) {
 
 TEST_F(ModelFiles, BadGltfFilesEndInOneError) {
   std::string cyclic = quad_gltf();
-  cyclic.replace(cyclic.find("\"children\": [2]"), 15, "\"children\": [1]");  // node 1 is its own child
-  std::string doubling = quad_gltf();  // node 1 lists itself twice: 2^depth placements
+  cyclic.replace(cyclic.find("\"children\": [2]"), 15,
+                 "\"children\": [1]");  // node 1 is its own child
+  std::string doubling = quad_gltf();   // node 1 lists itself twice: 2^depth placements
   doubling.replace(doubling.find("\"children\": [2]"), 15, "\"children\": [1, 1]");
   std::string past = quad_gltf();
   past.replace(past.find("\"count\": 6"), 10, "\"count\": 9");
-  for (const std::string& bad : {std::string("{"), std::string("glTF\x02\0\0\0", 8), cyclic, doubling, past,
-                                 std::string(R"({"asset": {"version": "2.0"}, "scenes": []})")}) {
+  for (const std::string& bad :
+       {std::string("{"), std::string("glTF\x02\0\0\0", 8), cyclic, doubling, past,
+        std::string(R"({"asset": {"version": "2.0"}, "scenes": []})")}) {
     EXPECT_THROW(parse_gltf(bad, "bad.gltf", ""), Error) << bad.substr(0, 40);
   }
   // External buffers are refused without a folder, and read only as regular files with one.

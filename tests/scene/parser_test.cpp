@@ -6,9 +6,8 @@
 
 #include <filesystem>
 #include <fstream>
-#include <string>
-
 #include <glm/mat4x4.hpp>
+#include <string>
 
 namespace rad {
 namespace {
@@ -265,9 +264,8 @@ TEST(Parser, ReadsObjectFlagsAndLightsLists) {
 }
 
 TEST(Parser, AcceptsAnEmptyLightsList) {
-  SceneDescription d = parse_scene_text("\"s\" Object \"a\" Pure Lights { } " +
-                                            pure("x").substr(pure("x").find('{')),
-                                        "scene.des");
+  SceneDescription d = parse_scene_text(
+      "\"s\" Object \"a\" Pure Lights { } " + pure("x").substr(pure("x").find('{')), "scene.des");
   EXPECT_TRUE(d.objects[0].flags.has_lights);
   EXPECT_TRUE(d.objects[0].flags.lights.empty());
 }
@@ -309,9 +307,11 @@ TEST(Parser, ReportsBadCopiesAndTransforms) {
   // An object still open cannot be copied into itself.
   expect_error("\"s\"\nObject \"a\" Assembly { Object \"b\" Copy \"a\" }", 2, 39,
                "no object \"a\" is defined before");
-  expect_error("\"s\"\nObject \"w\" Pure Rotate <0 0 0> 30 {", 2, 25, "the rotation's axis is zero");
+  expect_error("\"s\"\nObject \"w\" Pure Rotate <0 0 0> 30 {", 2, 25,
+               "the rotation's axis is zero");
   expect_error("\"s\"\nObject \"w\" Pure Scale <1 0 1> {", 2, 26, "a scale factor of 0");
-  expect_error("\"s\"\nObject \"w\" Pure Translate 1 {", 2, 27, "expected '<' starting the translation");
+  expect_error("\"s\"\nObject \"w\" Pure Translate 1 {", 2, 27,
+               "expected '<' starting the translation");
 }
 
 TEST(Parser, FormatsErrorsAsPathLineColumn) {
@@ -325,8 +325,9 @@ TEST(Parser, ReportsLineOfUnknownKeyword) {
 }
 
 TEST(Parser, ReportsUnknownObjectKind) {
-  expect_error("\"s\"\nObject \"w\" Group {", 2, 12,
-               "unknown keyword 'Group': expected 'Assembly', 'Composite', 'Pure', 'Copy' or 'Model'");
+  expect_error(
+      "\"s\"\nObject \"w\" Group {", 2, 12,
+      "unknown keyword 'Group': expected 'Assembly', 'Composite', 'Pure', 'Copy' or 'Model'");
 }
 
 TEST(Parser, ReportsKeywordsAreCaseSensitive) {

@@ -184,8 +184,9 @@ TEST(FurnaceWithABlock, KeepsEOverOneMinusRhoEverywhereVisible) {
   const float rho = 0.5f, e = 1.0f;
   testing::add_closed_box(d, Vec3(0), Vec3(1), Vec3(rho), Vec3(e));
   const Vec3 lo(0.3f, 0.3f, 0.0f), hi(0.6f, 0.6f, 0.4f);  // on the bottom face (z = 0)
-  const Vec3 p[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
-                     {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
+  const Vec3 p[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z},
+                     {lo.x, hi.y, lo.z}, {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z},
+                     {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
   // Outward faces (no bottom: it would lie on the box's floor).
   testing::add_quad(d, "block", p[4], p[5], p[6], p[7], Vec3(rho), Vec3(e));  // top, +z
   testing::add_quad(d, "block", p[0], p[1], p[5], p[4], Vec3(rho), Vec3(e));  // y = lo, -y

@@ -29,7 +29,8 @@ SceneDescription random_boxes(int n, uint32_t seed) {
   std::uniform_int_distribution<int> cell(0, 6), size(1, 3);
   for (int i = 0; i < n; ++i) {
     const Vec3 lo = Vec3(float(cell(rng)), float(cell(rng)), float(cell(rng) / 2)) / 8.0f;
-    const Vec3 hi = glm::min(lo + Vec3(float(size(rng)), float(size(rng)), float(size(rng))) / 8.0f, Vec3(1));
+    const Vec3 hi =
+        glm::min(lo + Vec3(float(size(rng)), float(size(rng)), float(size(rng))) / 8.0f, Vec3(1));
     // Outward faces: a box seen from outside is the inward box turned inside out.
     SceneDescription b;
     testing::add_closed_box(b, lo, hi, Vec3(0.3f + 0.1f * float(i % 5)), Vec3(0));
@@ -65,7 +66,8 @@ Solved solve_with(const Hierarchy& h, BackendKind kind, int shots) {
   Solved out;
   for (size_t p = 0; p < s.mesh.polygons.size(); ++p) {
     out.vertices.push_back(s.mesh.polygons[p].vertex_count());
-    for (uint32_t v = 0; v < s.mesh.polygons[p].vertex_count(); ++v) out.radiosity.push_back(s.radiosity(p, v));
+    for (uint32_t v = 0; v < s.mesh.polygons[p].vertex_count(); ++v)
+      out.radiosity.push_back(s.radiosity(p, v));
   }
   return out;
 }
@@ -81,17 +83,18 @@ void expect_agreement(const std::string& name, const Hierarchy& h, int shots, bo
   for (BackendKind k : others) {
     const Solved other = solve_with(h, k, shots);
     size_t differing = 0;
-    for (size_t p = 0; p < embree.vertices.size(); ++p) differing += embree.vertices[p] != other.vertices[p];
+    for (size_t p = 0; p < embree.vertices.size(); ++p)
+      differing += embree.vertices[p] != other.vertices[p];
     EXPECT_EQ(differing, 0u) << to_string(k) << ": polygons subdivided differently";
     if (differing) continue;
     float worst = 0.0f;
     for (size_t i = 0; i < embree.radiosity.size(); ++i) {
       worst = std::max(worst, max_component(glm::abs(embree.radiosity[i] - other.radiosity[i])));
     }
-    std::printf("[ agree    ] %-28s %6zu triangles, %7zu vertices: embree vs %-5s worst %.3g of the "
-                "largest\n",
-                name.c_str(), h.triangles.size(), embree.radiosity.size(), to_string(k),
-                worst / largest);
+    std::printf(
+        "[ agree    ] %-28s %6zu triangles, %7zu vertices: embree vs %-5s worst %.3g of the "
+        "largest\n",
+        name.c_str(), h.triangles.size(), embree.radiosity.size(), to_string(k), worst / largest);
     EXPECT_LE(worst / largest, 1e-5f) << to_string(k);
   }
 }

@@ -1,5 +1,7 @@
 // Checkpoints: a solve saved and resumed continues exactly as one never stopped, and a file of
 // another solve, a damaged one or a truncated one is refused without touching the state.
+#include "solver/checkpoint.h"
+
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -7,7 +9,6 @@
 #include <fstream>
 
 #include "scene_builder.h"
-#include "solver/checkpoint.h"
 #include "solver/solver.h"
 
 namespace rad {
@@ -27,7 +28,8 @@ Hierarchy lit_box() {
 
 std::vector<MeshVertex> all_vertices(const SolverState& s) {
   std::vector<MeshVertex> v;
-  for (const PolygonMesh& p : s.mesh.polygons) v.insert(v.end(), p.vertices.begin(), p.vertices.end());
+  for (const PolygonMesh& p : s.mesh.polygons)
+    v.insert(v.end(), p.vertices.begin(), p.vertices.end());
   return v;
 }
 

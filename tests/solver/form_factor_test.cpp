@@ -79,8 +79,8 @@ TEST(FormFactor, PerpendicularWallSeenFromItsFootTendsToOneHalf) {
   const Vec3 a(0, -L, 0), b(0, L, 0), c(0, L, L), d(0, -L, L);  // wall x = 0, facing +x
   for (float dist : {1e-1f, 1e-2f, 1e-3f}) {
     const Vec3 x(dist, 0, 0), n(0, 0, 1);
-    const float f = point_to_triangle_form_factor(x, n, a, c, b) +
-                    point_to_triangle_form_factor(x, n, a, d, c);
+    const float f =
+        point_to_triangle_form_factor(x, n, a, c, b) + point_to_triangle_form_factor(x, n, a, d, c);
     EXPECT_NEAR(f, 0.5f, 1e-3f) << dist;
   }
 }

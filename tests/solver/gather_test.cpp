@@ -43,10 +43,9 @@ TEST(Gather, VertexOnTheLineWhereTwoSurfacesMeetGetsTheLimitFromInside) {
   const Vec3 on_line(0, 0.5f, 0);
   GatherSettings g = gather_settings(c.s);
   // Reference: the exact form factor a little inside the floor.
-  const float inside = point_to_triangle_form_factor({1e-3f, 0.5f, 0}, {0, 0, 1}, {0, 0, 0},
-                                                     {0, 1, 0}, {0, 1, 1}) +
-                       point_to_triangle_form_factor({1e-3f, 0.5f, 0}, {0, 0, 1}, {0, 0, 0},
-                                                     {0, 1, 1}, {0, 0, 1});
+  const float inside =
+      point_to_triangle_form_factor({1e-3f, 0.5f, 0}, {0, 0, 1}, {0, 0, 0}, {0, 1, 0}, {0, 1, 1}) +
+      point_to_triangle_form_factor({1e-3f, 0.5f, 0}, {0, 0, 1}, {0, 0, 0}, {0, 1, 1}, {0, 0, 1});
   ASSERT_GT(inside, 0.3f);
   const float with_inset = c.gain(on_line, g);
   g.inset = 0;
@@ -81,10 +80,10 @@ TEST(Gather, IntensityCutSkipsRaysAndCountsThem) {
 // double-precision contour integral over the quad's two triangles, from a third of its extent to
 // 10^4 extents away, at random directions and receiver orientations. Each path it takes (the
 // single-precision outline contour within 6 extents, the double one to 24, the midpoint rule
-// beyond, the double contour for grazing receivers out there) must stay within 1e-4 of the form factor a receiver facing the source would have at
-// that point (rounding and quadrature errors are absolute: a grazing receiver's tiny form
-// factor carries them too), and within 1e-4 of the exact value wherever that is at least a
-// tenth of the facing one.
+// beyond, the double contour for grazing receivers out there) must stay within 1e-4 of the form
+// factor a receiver facing the source would have at that point (rounding and quadrature errors are
+// absolute: a grazing receiver's tiny form factor carries them too), and within 1e-4 of the exact
+// value wherever that is at least a tenth of the facing one.
 TEST(Gather, NearAndFarFormFactorsAgreeWithTheDoubleContour) {
   SceneDescription d;
   testing::add_quad(d, "light", {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, Vec3(0), Vec3(1));
@@ -113,7 +112,8 @@ TEST(Gather, NearAndFarFormFactorsAgreeWithTheDoubleContour) {
     return f;
   };
   int far_cases = 0;
-  for (float dist : {0.3f, 1.0f, 3.0f, 5.9f, 6.1f, 10.0f, 23.0f, 30.0f, 100.0f, 1000.0f, 10000.0f}) {
+  for (float dist :
+       {0.3f, 1.0f, 3.0f, 5.9f, 6.1f, 10.0f, 23.0f, 30.0f, 100.0f, 1000.0f, 10000.0f}) {
     double worst_of_facing = 0.0, worst_relative = 0.0;
     int compared = 0;
     for (int t = 0; t < 400; ++t) {

@@ -1,9 +1,10 @@
 // The memory bound known before solving holds, and is near what a solve that splits everything
 // it may actually uses.
+#include "solver/memory_estimate.h"
+
 #include <gtest/gtest.h>
 
 #include "scene_builder.h"
-#include "solver/memory_estimate.h"
 #include "solver/solver.h"
 
 namespace rad {
@@ -12,7 +13,8 @@ namespace {
 double mesh_bytes(const SolverState& s) {
   double b = 0.0;
   for (const PolygonMesh& p : s.mesh.polygons) {
-    b += double(p.vertices.size()) * sizeof(MeshVertex) + double(p.elements.size()) * sizeof(Element);
+    b += double(p.vertices.size()) * sizeof(MeshVertex) +
+         double(p.elements.size()) * sizeof(Element);
   }
   return b;
 }

@@ -25,14 +25,21 @@ std::string scene(const std::string& floor_flags, const std::string& light_flags
       card_away ? "<0 0.5 1.5> <0 0.5 2.5> <0 1.5 2.5>  <0 0.5 1.5> <0 1.5 2.5> <0 1.5 1.5>"
                 : "<1.5 1 1.5> <1.5 1 2.5> <2.5 1 2.5>  <1.5 1 1.5> <2.5 1 2.5> <2.5 1 1.5>";
   return "\"flags\"\n"
-         "Object \"floor\" Pure " + floor_flags + " { Reflectivity 0.5 Color <1 1 1> Emission 0\n"
+         "Object \"floor\" Pure " +
+         floor_flags +
+         " { Reflectivity 0.5 Color <1 1 1> Emission 0\n"
          "  Data { <0 0 0> <0 0 4> <4 0 4>  <0 0 0> <4 0 4> <4 0 0> } }\n"
          "Object \"other floor\" Pure { Reflectivity 0.5 Color <1 1 1> Emission 0\n"
          "  Data { <4 0 0> <4 0 4> <8 0 4>  <4 0 0> <8 0 4> <8 0 0> } }\n"
-         "Object \"light\" Pure " + light_flags + " { Reflectivity 0 Color <1 1 1> Emission 10\n"
+         "Object \"light\" Pure " +
+         light_flags +
+         " { Reflectivity 0 Color <1 1 1> Emission 10\n"
          "  Data { <1 2 1> <3 2 1> <3 2 3>  <1 2 1> <3 2 3> <1 2 3> } }\n"
-         "Object \"card\" Pure " + card_flags + " { Reflectivity 0 Color <1 1 1> Emission 0\n"
-         "  Data { " + card + " } }\n";
+         "Object \"card\" Pure " +
+         card_flags +
+         " { Reflectivity 0 Color <1 1 1> Emission 0\n"
+         "  Data { " +
+         card + " } }\n";
 }
 
 class FlaggedScene : public ::testing::TestWithParam<BackendKind> {
@@ -55,7 +62,8 @@ std::vector<std::pair<Vec3, Vec3>> vertices_of(const Solved& r, const std::strin
   std::vector<std::pair<Vec3, Vec3>> out;
   for (size_t p = 0; p < r.h.triangles.size(); ++p) {
     if (r.h.objects[size_t(r.h.triangles.object[p])].name != name) continue;
-    for (const MeshVertex& v : r.s.mesh.polygons[p].vertices) out.push_back({v.position, v.irradiance});
+    for (const MeshVertex& v : r.s.mesh.polygons[p].vertices)
+      out.push_back({v.position, v.irradiance});
   }
   return out;
 }
@@ -111,15 +119,15 @@ TEST_P(FlaggedScene, AnObjectWithALightsListLightsOnlyItselfAndWhatItLists) {
 }
 
 TEST_P(FlaggedScene, AGroupsFlagsHoldForEverythingInside) {
-  const std::string text =
-      "\"nested\"\nObject \"room\" Assembly CastsShadows No {\n" +
-      scene("", "", "", false).substr(std::string("\"flags\"\n").size()) + "}\n";
+  const std::string text = "\"nested\"\nObject \"room\" Assembly CastsShadows No {\n" +
+                           scene("", "", "", false).substr(std::string("\"flags\"\n").size()) +
+                           "}\n";
   expect_same_floor(*solve_text(text), *solve_text(scene("", "", "", true)));
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryBackend, FlaggedScene,
                          ::testing::Values(BackendKind::Embree, BackendKind::Grid,
-                                         BackendKind::Brute),
+                                           BackendKind::Brute),
                          [](const auto& info) { return std::string(to_string(info.param)); });
 
 }  // namespace

@@ -24,10 +24,13 @@ inline void add_quad(SceneDescription& s, const std::string& name, Vec3 a, Vec3 
   o.name = name;
   o.kind = ObjectKind::Pure;
   o.material = {reflectance, emission};
-  auto at = [&](float u, float v) { return a + (b - a) * u + (d - a) * v + (a - b + c - d) * (u * v); };
+  auto at = [&](float u, float v) {
+    return a + (b - a) * u + (d - a) * v + (a - b + c - d) * (u * v);
+  };
   for (int i = 0; i < k; ++i) {
     for (int j = 0; j < k; ++j) {
-      const float u0 = float(i) / k, u1 = float(i + 1) / k, v0 = float(j) / k, v1 = float(j + 1) / k;
+      const float u0 = float(i) / k, u1 = float(i + 1) / k, v0 = float(j) / k,
+                  v1 = float(j + 1) / k;
       o.triangles.push_back({at(u0, v0), at(u1, v0), at(u1, v1)});
       o.triangles.push_back({at(u0, v0), at(u1, v1), at(u0, v1)});
       o.triangle_locs.resize(o.triangles.size());
@@ -39,8 +42,9 @@ inline void add_quad(SceneDescription& s, const std::string& name, Vec3 a, Vec3 
 
 /// Axis-aligned box [lo, hi] with all six faces facing inwards, one Pure per face.
 inline void add_closed_box(SceneDescription& s, Vec3 lo, Vec3 hi, Vec3 rho, Vec3 e, int k = 1) {
-  const Vec3 p[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
-                     {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
+  const Vec3 p[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z},
+                     {lo.x, hi.y, lo.z}, {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z},
+                     {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
   add_quad(s, "bottom", p[0], p[1], p[2], p[3], rho, e, k);  // z = lo, normal +z
   add_quad(s, "top", p[4], p[7], p[6], p[5], rho, e, k);     // z = hi, normal -z
   add_quad(s, "front", p[0], p[4], p[5], p[1], rho, e, k);   // y = lo, normal +y

@@ -138,9 +138,10 @@ int main(int argc, char** argv) {
   app.add_option("--points-out", points_path, "with --compare: every point's values as CSV")
       ->needs("--compare");
   std::vector<float> ambient;
-  app.add_option("--ambient", ambient,
-                 "with --compare: add reflectance x this ambient radiosity (R G B) to rad's values, "
-                 "as rad's display does (rad --stats-json gives it as solver.ambient)")
+  app.add_option(
+         "--ambient", ambient,
+         "with --compare: add reflectance x this ambient radiosity (R G B) to rad's values, "
+         "as rad's display does (rad --stats-json gives it as solver.ambient)")
       ->expected(3)
       ->needs("--compare");
   CLI11_PARSE(app, argc, argv);

@@ -20,7 +20,9 @@ PlyMesh read_radiosity_ply(const std::string& path) {
   }
   for (size_t f = 0; f + 1 < d.face_first.size(); ++f) {
     const uint32_t n = d.face_first[f + 1] - d.face_first[f];
-    if (n != 3) throw Error(SourceLoc{path}, fmt::format("face {} has {} vertices; rad writes triangles", f, n));
+    if (n != 3)
+      throw Error(SourceLoc{path},
+                  fmt::format("face {} has {} vertices; rad writes triangles", f, n));
   }
   mesh.indices = d.face_indices;
   return mesh;

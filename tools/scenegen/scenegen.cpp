@@ -133,8 +133,8 @@ void add_rounded_box(Tris& out, Vec3 lo, Vec3 hi, float r, int m, int flat) {
     return len > 0.0f ? q + d * (r / len) : p;
   };
   const std::array<std::vector<float>, 3> stops = {rounded_stops(lo.x, hi.x, r, m, flat),
-                                                  rounded_stops(lo.y, hi.y, r, m, flat),
-                                                  rounded_stops(lo.z, hi.z, r, m, flat)};
+                                                   rounded_stops(lo.y, hi.y, r, m, flat),
+                                                   rounded_stops(lo.z, hi.z, r, m, flat)};
   for (int axis = 0; axis < 3; ++axis) {
     const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
     const std::vector<float>&su = stops[ua], &sv = stops[va];
@@ -169,7 +169,8 @@ void add_cylinder(Tris& out, Vec3 base, float radius, float height, int slices, 
   const int rings = std::max(1, stacks / 2);
   for (float y : {0.0f, height}) {
     add_grid(
-        out, slices, rings, [&](int j, int i) { return ring(j, y, radius * float(i + 1) / (rings + 1)); },
+        out, slices, rings,
+        [&](int j, int i) { return ring(j, y, radius * float(i + 1) / (rings + 1)); },
         [&](int, int) { return base + Vec3(0, y == 0.0f ? -1.0f : height + 1.0f, 0); });
     for (int j = 0; j < slices; ++j) {  // the centre fan
       Vec3 c = base + Vec3(0, y, 0), a = ring(j, y, radius / (rings + 1)),
@@ -205,13 +206,16 @@ void add_leaf(Tris& out, Vec3 base, Vec3 dir, float length, float width, float d
               float thickness, int n) {
   const Vec3 up(0, 1, 0);
   const Vec3 side = glm::normalize(glm::cross(dir, up));
-  auto centre = [&](float s) { return base + dir * (length * s) + up * (length * (0.6f * s - droop * s * s)); };
+  auto centre = [&](float s) {
+    return base + dir * (length * s) + up * (length * (0.6f * s - droop * s * s));
+  };
   auto normal = [&](float s) {
     const Vec3 tangent = dir * length + up * (length * (0.6f - 2.0f * droop * s));
     return glm::normalize(glm::cross(side, tangent));
   };
   auto surface = [&](int i, int j, float offset) {
-    const float s = float(i) / n, w = (float(j) - 1.0f) * width * (0.15f + 0.85f * std::sin(3.14159265f * s));
+    const float s = float(i) / n,
+                w = (float(j) - 1.0f) * width * (0.15f + 0.85f * std::sin(3.14159265f * s));
     return centre(s) + side * (0.5f * w) + normal(s) * offset;
   };
   for (float face : {1.0f, -1.0f}) {
@@ -303,7 +307,8 @@ SceneKind parse_scene_kind(std::string_view name) {
     if (name == to_string(k)) return k;
   }
   throw Error(fmt::format(
-      "unknown scene kind \"{}\" (expected cornell, soup, nested, stadium, building or room)", name));
+      "unknown scene kind \"{}\" (expected cornell, soup, nested, stadium, building or room)",
+      name));
 }
 
 SceneDescription make_cornell_box(int k) {
@@ -516,7 +521,8 @@ SceneDescription make_furnished_room(int q, uint64_t seed) {
   part("sofa.seat", fabric, rounded(Vec3(1.3f, 0.1f, 0.1f), Vec3(3.3f, 0.45f, 0.95f), 0.08f));
   part("sofa.back", fabric, rounded(Vec3(1.3f, 0.1f, 0.05f), Vec3(3.3f, 0.9f, 0.3f), 0.08f));
   part("sofa.left arm", fabric, rounded(Vec3(1.05f, 0.1f, 0.05f), Vec3(1.3f, 0.65f, 0.95f), 0.08f));
-  part("sofa.right arm", fabric, rounded(Vec3(3.3f, 0.1f, 0.05f), Vec3(3.55f, 0.65f, 0.95f), 0.08f));
+  part("sofa.right arm", fabric,
+       rounded(Vec3(3.3f, 0.1f, 0.05f), Vec3(3.55f, 0.65f, 0.95f), 0.08f));
   for (int k = 0; k < 4; ++k) {
     Tris leg;
     add_cylinder(leg, Vec3((k & 1) ? 3.45f : 1.15f, 0.0f, (k & 2) ? 0.85f : 0.15f), 0.03f, 0.1f,
@@ -526,8 +532,10 @@ SceneDescription make_furnished_room(int q, uint64_t seed) {
   group("sofa");
   part("armchair.seat", leather, rounded(Vec3(3.7f, 0.0f, 2.6f), Vec3(4.6f, 0.42f, 3.5f), 0.1f));
   part("armchair.back", leather, rounded(Vec3(3.7f, 0.0f, 3.3f), Vec3(4.6f, 0.95f, 3.6f), 0.1f));
-  part("armchair.left arm", leather, rounded(Vec3(3.55f, 0.0f, 2.6f), Vec3(3.75f, 0.62f, 3.6f), 0.08f));
-  part("armchair.right arm", leather, rounded(Vec3(4.55f, 0.0f, 2.6f), Vec3(4.75f, 0.62f, 3.6f), 0.08f));
+  part("armchair.left arm", leather,
+       rounded(Vec3(3.55f, 0.0f, 2.6f), Vec3(3.75f, 0.62f, 3.6f), 0.08f));
+  part("armchair.right arm", leather,
+       rounded(Vec3(4.55f, 0.0f, 2.6f), Vec3(4.75f, 0.62f, 3.6f), 0.08f));
   group("armchair");
   // A coffee table on four legs with a ring, a bowl of fruit and a vase on it.
   const Material wood = color(0.5f, 0.32f, 0.18f);
@@ -542,8 +550,8 @@ SceneDescription make_furnished_room(int q, uint64_t seed) {
     Tris ring, fruit, vase;
     add_torus(ring, Vec3(2.0f, 0.47f, 1.8f), 0.1f, 0.02f, 8 * q, 3 * q);
     for (int k = 0; k < 5; ++k) {
-      add_sphere(fruit, Vec3(2.35f + 0.09f * (k % 3), 0.5f, 1.9f + 0.1f * (k / 3)), 0.045f,
-                 3 * q, 6 * q);
+      add_sphere(fruit, Vec3(2.35f + 0.09f * (k % 3), 0.5f, 1.9f + 0.1f * (k / 3)), 0.045f, 3 * q,
+                 6 * q);
     }
     add_cylinder(vase, Vec3(2.6f, 0.45f, 2.1f), 0.06f, 0.25f, 6 * q, 2 * q);
     part("table.ring", color(0.8f, 0.7f, 0.3f), std::move(ring));
@@ -568,8 +576,8 @@ SceneDescription make_furnished_room(int q, uint64_t seed) {
       const float y = 0.08f + 0.48f * k;
       while (z < z0 + wide - 0.1f) {
         const float thick = rng.uniform(0.02f, 0.06f), high = rng.uniform(0.22f, 0.4f);
-        add_box(books, Vec3(x0 + 0.03f, y, z), Vec3(x0 + rng.uniform(0.22f, 0.3f), y + high, z + thick),
-                1);
+        add_box(books, Vec3(x0 + 0.03f, y, z),
+                Vec3(x0 + rng.uniform(0.22f, 0.3f), y + high, z + thick), 1);
         z += thick + 0.002f;
       }
       part(fmt::format("shelf.books{}", k),

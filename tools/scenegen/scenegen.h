@@ -69,5 +69,4 @@ SceneDescription make_furnished_room(int q, uint64_t seed);
 std::vector<std::array<Vec3, 3>> tessellate_triangles(const std::vector<std::array<Vec3, 3>>& in,
                                                       int k);
 
-
 }  // namespace rad
