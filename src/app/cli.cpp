@@ -34,6 +34,33 @@ void parse_shard(const std::string& text, int* index, int* count) {
 
 namespace {
 
+// --emit and --hierarchy: how a scene file is read, for the solving modes and rad convert alike.
+struct SceneReading {
+  std::vector<std::string> emit;
+  std::string hierarchy;
+
+  void add_to(CLI::App& app, const char* emit_help, const char* hierarchy_help) {
+    app.add_option("--emit", emit, emit_help)
+        ->expected(1)
+        ->allow_extra_args(false)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    app.add_option("--hierarchy", hierarchy, hierarchy_help);
+  }
+  // After parsing; throws CLI::ValidationError naming the option.
+  void apply(CommandLine& c) const {
+    try {
+      for (const std::string& e : emit) c.model.emit.push_back(parse_emit_rule(e));
+    } catch (const Error& e) {
+      throw CLI::ValidationError("--emit", e.what());
+    }
+    try {
+      if (!hierarchy.empty()) c.hierarchy = parse_hierarchy_mode(hierarchy);
+    } catch (const Error& e) {
+      throw CLI::ValidationError("--hierarchy", e.what());
+    }
+  }
+};
+
 // rad convert IN OUT: a mode of its own, with only the options it uses (a solve's would be
 // silently meaningless here).
 std::optional<CommandLine> parse_convert(std::vector<std::string> args, int* exit_code) {
@@ -48,31 +75,17 @@ std::optional<CommandLine> parse_convert(std::vector<std::string> args, int* exi
   app.add_option("in", c.scene, "Scene to read: .des, .obj, .gltf, .glb or .ply")->required();
   app.add_option("out", c.output, "Scene to write: .des, .obj (+ .mtl), .gltf, .glb or .ply")
       ->required();
-  std::vector<std::string> emit;
-  app.add_option("--emit", emit,
+  SceneReading reading;
+  reading.add_to(app,
                  "For a model: materials matching the pattern emit VALUE times their colour "
-                 "(repeatable)")
-      ->expected(1)
-      ->allow_extra_args(false)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  std::string hierarchy;
-  app.add_option("--hierarchy", hierarchy,
-                 "file (as read: a model's groups and materials) or auto (the Pures regrouped "
-                 "into compact Composites and Assemblies of what is near); default file");
+                 "(repeatable)",
+                 "file (as read: a model's groups and materials), auto (the Pures regrouped "
+                 "into compact Composites and Assemblies of what is near) or flat; default file");
   app.add_flag("-q,--quiet", c.quiet, "Print errors only");
   std::reverse(args.begin(), args.end());
   try {
     app.parse(args);
-    try {
-      for (const std::string& e : emit) c.model.emit.push_back(parse_emit_rule(e));
-    } catch (const Error& e) {
-      throw CLI::ValidationError("--emit", e.what());
-    }
-    try {
-      if (!hierarchy.empty()) c.hierarchy = parse_hierarchy_mode(hierarchy);
-    } catch (const Error& e) {
-      throw CLI::ValidationError("--hierarchy", e.what());
-    }
+    reading.apply(c);
   } catch (const CLI::ParseError& e) {
     *exit_code = app.exit(e);
     return std::nullopt;
@@ -149,11 +162,7 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
                    "Output mesh (.ply, .off, .gfo (COFF), .obj, .gltf or .glb)");
   }
   app.add_flag("--check", c.check, "Parse and validate the scene, print a summary, do not solve");
-  std::string hierarchy;
-  app.add_option("--hierarchy", hierarchy,
-                 "Object hierarchy (SPEC §3): file (as written), auto (Pures regrouped into "
-                 "compact Composites and Assemblies of what is near) or flat (one Composite); "
-                 "default auto for models, file for descriptions");
+
   app.add_option("--backend", backend, "Shadow-ray backend: embree, grid or brute")
       ->capture_default_str();
   std::string cross_check;
@@ -225,13 +234,13 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
                  "Seconds between checkpoints (0: after every shot)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  std::vector<std::string> emit;
-  app.add_option("--emit", emit,
-                 "For a model scene (.obj, .ply): materials matching the pattern emit VALUE "
-                 "times their colour, e.g. --emit 'Lamp*=12' (repeatable)")
-      ->expected(1)
-      ->allow_extra_args(false)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  SceneReading reading;
+  reading.add_to(app,
+                 "For a model scene (.obj, .ply, .gltf, .glb): materials matching the pattern "
+                 "emit VALUE times their colour, e.g. --emit 'Lamp*=12' (repeatable)",
+                 "Object hierarchy (SPEC §3): file (as written), auto (Pures regrouped into "
+                 "compact Composites and Assemblies of what is near) or flat (one Composite); "
+                 "default auto for models, file for descriptions");
   std::string max_memory;
   app.add_option("--max-memory", max_memory,
                  "Memory the solve may use (512M, 8G, ...; default 90% of the machine's): a scene "
@@ -240,16 +249,7 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
   try {
     app.parse(args);
     c.backend = parse_backend_kind(backend);
-    try {
-      if (!hierarchy.empty()) c.hierarchy = parse_hierarchy_mode(hierarchy);
-    } catch (const Error& e) {
-      throw CLI::ValidationError("--hierarchy", e.what());
-    }
-    try {
-      for (const std::string& e : emit) c.model.emit.push_back(parse_emit_rule(e));
-    } catch (const Error& e) {
-      throw CLI::ValidationError("--emit", e.what());
-    }
+    reading.apply(c);
     try {
       if (!max_memory.empty()) c.max_memory = parse_byte_size(max_memory);
     } catch (const Error& e) {

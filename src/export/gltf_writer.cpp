@@ -47,6 +47,18 @@ int add_vec3(tinygltf::Model& m, const std::vector<Vec3>& v, bool with_bounds) {
   return int(m.accessors.size() - 1);
 }
 
+/// A uint32 index accessor over `indices`; returns its index.
+int add_indices(tinygltf::Model& m, const std::vector<uint32_t>& indices) {
+  tinygltf::Accessor a;
+  a.bufferView = add_view(m, indices.data(), indices.size() * sizeof(uint32_t),
+                          TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  a.type = TINYGLTF_TYPE_SCALAR;
+  a.count = indices.size();
+  m.accessors.push_back(a);
+  return int(m.accessors.size() - 1);
+}
+
 void serialise(tinygltf::Model& m, std::ostream& out, bool binary) {
   if (m.buffers[0].data.empty()) m.buffers.clear();
   tinygltf::TinyGLTF writer;
@@ -82,14 +94,7 @@ void write_scene_gltf(std::ostream& out, const Hierarchy& h, bool binary) {
     tinygltf::Primitive prim;
     prim.mode = TINYGLTF_MODE_TRIANGLES;
     prim.attributes["POSITION"] = add_vec3(m, w.position, true);
-    tinygltf::Accessor idx;
-    idx.bufferView = add_view(m, w.indices.data(), w.indices.size() * sizeof(uint32_t),
-                              TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-    idx.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-    idx.type = TINYGLTF_TYPE_SCALAR;
-    idx.count = w.indices.size();
-    m.accessors.push_back(idx);
-    prim.indices = int(m.accessors.size() - 1);
+    prim.indices = add_indices(m, w.indices);
 
     tinygltf::Material mat;
     mat.name = o.name;
@@ -132,14 +137,7 @@ void write_gltf(std::ostream& out, const OutputMesh& mesh, const ToneMap& tm, bo
     prim.attributes["POSITION"] = add_vec3(m, mesh.position, true);
     prim.attributes["COLOR_0"] = add_vec3(m, colour, false);
     prim.attributes["_RADIOSITY"] = add_vec3(m, mesh.radiosity, false);
-    tinygltf::Accessor idx;
-    idx.bufferView = add_view(m, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t),
-                              TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-    idx.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-    idx.type = TINYGLTF_TYPE_SCALAR;
-    idx.count = mesh.indices.size();
-    m.accessors.push_back(idx);
-    prim.indices = int(m.accessors.size() - 1);
+    prim.indices = add_indices(m, mesh.indices);
 
     tinygltf::Material mat;
     mat.name = "radiosity (unlit vertex colours)";

@@ -10,6 +10,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/file_extension.h"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STB_IMAGE_WRITE_STATIC
@@ -19,12 +20,6 @@
 namespace rad {
 
 namespace {
-
-std::string extension(const std::string& path) {
-  std::string e = std::filesystem::path(path).extension().string();
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
-  return e;
-}
 
 void append_to_stream(void* context, void* data, int size) {
   static_cast<std::ostream*>(context)->write(static_cast<const char*>(data), size);
@@ -105,7 +100,7 @@ void write_pfm(std::ostream& out, const Image& img) {
 }  // namespace
 
 void check_image_extension(const std::string& path) {
-  const std::string e = extension(path);
+  const std::string e = lower_extension(path);
   if (e != ".png" && e != ".hdr" && e != ".exr" && e != ".pfm") {
     throw Error(SourceLoc{path},
                 "unknown image format '" + e + "' (expected .png, .hdr, .exr or .pfm)");
@@ -115,7 +110,7 @@ void check_image_extension(const std::string& path) {
 void write_image_file(const std::string& path, const Image& img, const ToneMap& tm) {
   check_image_extension(path);
   static_assert(sizeof(Vec3) == 3 * sizeof(float), "Vec3 must be three packed floats");
-  const std::string e = extension(path);
+  const std::string e = lower_extension(path);
   AtomicFile f(path);
   if (e == ".png") {
     write_png(f.stream(), img, tm, path);

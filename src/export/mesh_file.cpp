@@ -5,6 +5,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/file_extension.h"
 #include "export/gltf_writer.h"
 #include "export/obj_writer.h"
 #include "export/off_writer.h"
@@ -12,27 +13,19 @@
 
 namespace rad {
 
-namespace {
-std::string extension(const std::string& path) {
-  std::string e = std::filesystem::path(path).extension().string();
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
-  return e;
-}
-}  // namespace
-
 void check_mesh_extension(const std::string& path) {
-  const std::string e = extension(path);
+  const std::string e = lower_extension(path);
   if (e != ".ply" && e != ".off" && e != ".gfo" && e != ".obj" && e != ".gltf" && e != ".glb") {
     throw Error(SourceLoc{path}, "unknown output format '" + e +
                                      "' (expected .ply, .off, .gfo, .obj, .gltf or .glb)");
   }
 }
 
-bool is_original_output_name(const std::string& path) { return extension(path) == ".gfo"; }
+bool is_original_output_name(const std::string& path) { return lower_extension(path) == ".gfo"; }
 
 void write_mesh_file(const std::string& path, const OutputMesh& mesh, const MeshFileOptions& o) {
   check_mesh_extension(path);
-  const std::string e = extension(path);
+  const std::string e = lower_extension(path);
   AtomicFile f(path);
   if (e == ".ply") {
     write_ply(f.stream(), mesh, o.tone, o.ascii);

@@ -8,6 +8,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/file_extension.h"
 #include "export/gltf_writer.h"
 #include "export/welded_mesh.h"
 #include "scene/description_writer.h"
@@ -15,12 +16,6 @@
 namespace rad {
 
 namespace {
-
-std::string extension(const std::string& path) {
-  std::string e = std::filesystem::path(path).extension().string();
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
-  return e;
-}
 
 // The object's names from its root down, joined by '/': the hierarchy as far as a flat list of
 // groups holds it.
@@ -125,7 +120,7 @@ void write_ply_scene(const std::string& path, const Hierarchy& h) {
 }  // namespace
 
 void check_scene_extension(const std::string& path) {
-  const std::string e = extension(path);
+  const std::string e = lower_extension(path);
   if (e != ".des" && e != ".obj" && e != ".gltf" && e != ".glb" && e != ".ply") {
     throw Error(SourceLoc{path},
                 "rad convert cannot write '" + e + "' (expected .des, .obj, .gltf, .glb or .ply)");
@@ -135,7 +130,7 @@ void check_scene_extension(const std::string& path) {
 std::vector<std::string> write_scene_file(const std::string& path, const SceneDescription& scene,
                                           const Hierarchy& h) {
   check_scene_extension(path);
-  const std::string e = extension(path);
+  const std::string e = lower_extension(path);
   std::vector<std::string> lost;
   if (e == ".des") {
     for (const ObjectDescription& o : scene.objects) {
