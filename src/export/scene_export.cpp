@@ -38,6 +38,14 @@ std::string unique_word(const std::string& name, std::set<std::string>& taken) {
   return u;
 }
 
+// A name inside a comment line: no line breaks, and no "end_header" to end a PLY header early.
+std::string comment_text(const std::string& name) {
+  std::string c;
+  for (char ch : name) c += (ch == '\n' || ch == '\r') ? ' ' : ch;
+  for (size_t at; (at = c.find("end_header")) != std::string::npos;) c.replace(at, 3, "end-");
+  return c;
+}
+
 std::string number(float v) { return fmt::format("{:.9g}", v); }
 
 void write_obj_scene(const std::string& path, const Hierarchy& h) {
@@ -45,7 +53,7 @@ void write_obj_scene(const std::string& path, const Hierarchy& h) {
   std::set<std::string> groups, materials;
   std::vector<std::string> material_of(h.objects.size());
   AtomicFile mtl(mtl_path.string());
-  mtl.stream() << "# materials of " << h.scene_name << ", written by rad convert\n";
+  mtl.stream() << "# materials of " << comment_text(h.scene_name) << ", written by rad convert\n";
   for (size_t i = 0; i < h.objects.size(); ++i) {
     const SceneObject& o = h.objects[i];
     if (o.kind != ObjectKind::Pure || o.triangle_count == 0) continue;
@@ -60,8 +68,8 @@ void write_obj_scene(const std::string& path, const Hierarchy& h) {
   }
   AtomicFile obj(path);
   std::ostream& out = obj.stream();
-  out << "# " << h.scene_name << ", written by rad convert\nmtllib " << mtl_path.filename().string()
-      << '\n';
+  out << "# " << comment_text(h.scene_name) << ", written by rad convert\nmtllib "
+      << mtl_path.filename().string() << '\n';
   uint64_t base = 1;  // OBJ indices are 1-based and global
   for (size_t i = 0; i < h.objects.size(); ++i) {
     if (material_of[i].empty()) continue;
@@ -94,7 +102,7 @@ void write_ply_scene(const std::string& path, const Hierarchy& h) {
   }
   AtomicFile f(path);
   std::ostream& out = f.stream();
-  out << "ply\nformat ascii 1.0\ncomment " << h.scene_name
+  out << "ply\nformat ascii 1.0\ncomment " << comment_text(h.scene_name)
       << ", written by rad convert: rgb = reflectance x 255 (linear)\nelement vertex " << vertices
       << "\nproperty float x\nproperty float y\nproperty float z\n"
       << "property uchar red\nproperty uchar green\nproperty uchar blue\n"
@@ -121,6 +129,13 @@ void write_ply_scene(const std::string& path, const Hierarchy& h) {
 
 void check_scene_extension(const std::string& path) {
   const std::string e = lower_extension(path);
+  // OBJ readers split `mtllib` at white space: a material library named with a space is lost.
+  const std::string file = std::filesystem::path(path).filename().string();
+  if (e == ".obj" && file.find_first_of(" \t") != std::string::npos) {
+    throw Error(SourceLoc{path},
+                "an OBJ's name may not hold white space: its 'mtllib' line "
+                "would not name its .mtl for OBJ readers");
+  }
   if (e != ".des" && e != ".obj" && e != ".gltf" && e != ".glb" && e != ".ply") {
     throw Error(SourceLoc{path},
                 "rad convert cannot write '" + e + "' (expected .des, .obj, .gltf, .glb or .ply)");
@@ -158,7 +173,9 @@ std::vector<std::string> write_scene_file(const std::string& path, const SceneDe
     lost.push_back("the hierarchy is kept as group names (its path, joined by '/')");
   } else if (e == ".ply") {
     write_ply_scene(path, h);
-    lost.push_back("PLY holds no materials or hierarchy: reflectance is kept as vertex colours");
+    lost.push_back(
+        "PLY holds no materials or hierarchy: reflectance is written as vertex colours, "
+        "emission is lost, and rad reads the file back as one grey (0.8) Pure");
   } else {
     AtomicFile f(path);
     write_scene_gltf(f.stream(), h, e == ".glb");

@@ -239,7 +239,7 @@ class Parser {
       ObjectDescription c = m.objects[i];
       for (int32_t& child : c.children) child += base;
       scene_.objects.push_back(std::move(c));
-      complete_.push_back(1);
+      complete_.push_back(0);  // the model's own pieces: a Copy names the Model object, not them
     }
     for (int32_t child : m.objects[0].children)
       scene_.objects[size_t(id)].children.push_back(child + base);

@@ -227,6 +227,13 @@ Object "room B" Copy "room A" Translate <0 0 10>
     EXPECT_GE(o.box.lo.x, 10.0f);
   }
   EXPECT_EQ(floors, 2u);
+  // A Copy names the Model object, never one of its pieces of the same name (a group "floor").
+  const std::string same = write("same.des", R"("same"
+Object "light" Pure { Reflectivity 0 Color <1 1 1> Emission 5 Data { <0 9 0> <0 9 1> <1 9 0> } }
+Object "floor" Model "room.obj"
+Object "floor 2" Copy "floor" Translate <10 0 0>
+)");
+  EXPECT_EQ(build_hierarchy(parse_scene_file(same)).triangles.size(), 1u + 2u * 6u);
   // What is not a model, and a Model in a Composite, are errors at the file's name.
   const std::string bad = write("bad.des", "\"bad\"\nObject \"m\" Model \"x.off\"\n");
   try {
