@@ -11,9 +11,10 @@ namespace rad {
 
 int run_convert(const CommandLine& cmd) {
   check_scene_extension(cmd.output);
-  const SceneDescription scene =
-      regroup(read_scene_file(cmd.scene, cmd.model), cmd.hierarchy.value_or(HierarchyMode::AsRead));
-  const Hierarchy h = build_hierarchy(scene);
+  const HierarchyMode mode = cmd.hierarchy.value_or(HierarchyMode::AsRead);
+  const SceneDescription scene = regroup(read_scene_file(cmd.scene, cmd.model), mode);
+  // A regrouped scene was built once already, and warned then.
+  const Hierarchy h = build_hierarchy(scene, {}, /*warn=*/mode == HierarchyMode::AsRead);
   const std::vector<std::string> lost = write_scene_file(cmd.output, scene, h);
   if (!cmd.quiet) {
     size_t pures = 0;

@@ -89,7 +89,7 @@ void write_scene_gltf(std::ostream& out, const Hierarchy& h, bool binary) {
     tinygltf::Node& node = m.nodes[i];
     node.name = o.name;
     node.children.assign(o.children.begin(), o.children.end());
-    if (o.kind != ObjectKind::Pure || o.triangle_count == 0) continue;
+    if (o.kind != ObjectKind::Pure) continue;
     const WeldedMesh w = weld_pure(h, int32_t(i));
     tinygltf::Primitive prim;
     prim.mode = TINYGLTF_MODE_TRIANGLES;

@@ -56,7 +56,7 @@ void write_obj_scene(const std::string& path, const Hierarchy& h) {
   mtl.stream() << "# materials of " << comment_text(h.scene_name) << ", written by rad convert\n";
   for (size_t i = 0; i < h.objects.size(); ++i) {
     const SceneObject& o = h.objects[i];
-    if (o.kind != ObjectKind::Pure || o.triangle_count == 0) continue;
+    if (o.kind != ObjectKind::Pure) continue;
     material_of[i] = unique_word(o.name, materials);
     const Vec3 rho = o.material.reflectance, e = o.material.emission;
     mtl.stream() << "newmtl " << material_of[i] << "\nKd " << number(rho.x) << ' ' << number(rho.y)
@@ -94,7 +94,7 @@ void write_ply_scene(const std::string& path, const Hierarchy& h) {
   std::vector<Vec3> colour;
   size_t vertices = 0, faces = 0;
   for (size_t i = 0; i < h.objects.size(); ++i) {
-    if (h.objects[i].kind != ObjectKind::Pure || h.objects[i].triangle_count == 0) continue;
+    if (h.objects[i].kind != ObjectKind::Pure) continue;
     meshes.push_back(weld_pure(h, int32_t(i)));
     colour.push_back(h.objects[i].material.reflectance);
     vertices += meshes.back().position.size();

@@ -28,6 +28,19 @@ struct Regrouper {
   const Hierarchy& h;
   SceneDescription out;
 
+  // `mode` names the option in the error: a Lights list names objects that regrouping drops.
+  Regrouper(const Hierarchy& hierarchy, const char* mode) : h(hierarchy) {
+    for (const SceneObject& o : h.objects) {
+      if (o.influence >= 0) {
+        throw Error(o.loc, fmt::format("--hierarchy {} regroups the objects, so it cannot keep "
+                                       "the Lights list of \"{}\" (use --hierarchy file)",
+                                       mode, h.objects[size_t(o.influence)].name));
+      }
+    }
+    out.name = h.scene_name;
+    out.path = h.source_path;
+  }
+
   // Pure `i` of h as a Pure of the output, its resolved flags written on it.
   int32_t pure(int32_t i) {
     const SceneObject& o = h.objects[size_t(i)];
@@ -107,9 +120,7 @@ struct Regrouper {
 std::vector<int32_t> pures_of(const Hierarchy& h) {
   std::vector<int32_t> p;
   for (size_t i = 0; i < h.objects.size(); ++i) {
-    if (h.objects[i].kind == ObjectKind::Pure && h.objects[i].triangle_count > 0) {
-      p.push_back(int32_t(i));
-    }
+    if (h.objects[i].kind == ObjectKind::Pure) p.push_back(int32_t(i));  // never empty (built)
   }
   return p;
 }
@@ -140,32 +151,14 @@ HierarchyMode default_hierarchy_mode(const std::string& scene_path) {
 }
 
 SceneDescription automatic_hierarchy(const Hierarchy& h) {
-  for (const SceneObject& o : h.objects) {
-    if (o.influence >= 0) {
-      throw Error(o.loc,
-                  "--hierarchy auto regroups the objects, so it cannot keep the Lights "
-                  "list of \"" +
-                      h.objects[size_t(o.influence)].name + "\" (use --hierarchy file)");
-    }
-  }
-  Regrouper r{h, {}};
-  r.out.name = h.scene_name;
-  r.out.path = h.source_path;
+  Regrouper r(h, "auto");
   const std::vector<int32_t> pures = pures_of(h);
   if (!pures.empty()) r.out.roots.push_back(r.build(pures));
   return std::move(r.out);
 }
 
 SceneDescription flat_hierarchy(const Hierarchy& h) {
-  for (const SceneObject& o : h.objects) {
-    if (o.influence >= 0) {
-      throw Error(o.loc, "--hierarchy flat cannot keep the Lights list of \"" +
-                             h.objects[size_t(o.influence)].name + "\" (use --hierarchy file)");
-    }
-  }
-  Regrouper r{h, {}};
-  r.out.name = h.scene_name;
-  r.out.path = h.source_path;
+  Regrouper r(h, "flat");
   std::vector<int32_t> parts;
   for (int32_t i : pures_of(h)) parts.push_back(r.pure(i));
   if (!parts.empty()) r.out.roots.push_back(r.group(ObjectKind::Composite, std::move(parts)));
@@ -180,7 +173,8 @@ SceneDescription regroup(const SceneDescription& scene, HierarchyMode mode) {
 
 Hierarchy build_hierarchy(const SceneDescription& scene, HierarchyMode mode) {
   if (mode == HierarchyMode::AsRead) return build_hierarchy(scene);
-  return build_hierarchy(regroup(scene, mode));
+  // The first build (in regroup) has said what there is to say about the scene.
+  return build_hierarchy(regroup(scene, mode), {}, /*warn=*/false);
 }
 
 Hierarchy load_hierarchy(const std::string& path, const ModelOptions& model,

@@ -165,7 +165,7 @@ bool influence_reaches(const Hierarchy& h, int32_t influence, uint32_t t) {
   return it != lit.begin() && t - std::prev(it)->first < std::prev(it)->count;
 }
 
-Hierarchy build_hierarchy(const SceneDescription& scene, const BuildLimits& limits) {
+Hierarchy build_hierarchy(const SceneDescription& scene, const BuildLimits& limits, bool warn) {
   Hierarchy h;
   h.scene_name = scene.name;
   h.source_path = scene.path;
@@ -181,15 +181,16 @@ Hierarchy build_hierarchy(const SceneDescription& scene, const BuildLimits& limi
   // diagonals from the origin that is under 8 float steps of the coordinates, and the backends'
   // answers near surfaces come down to rounding (measured: a box 760 diagonals out made Embree
   // and brute force disagree on 1 ray in 15,000).
-  if (h.bounds.diagonal() > 0.0f && h.bounds.magnitude() > 10.0f * h.bounds.diagonal()) {
-    warn({scene.path},
-         fmt::format("the scene lies {:.0f} times its size from the origin, where float precision "
-                     "is too coarse for its shadow rays; move it near the origin",
-                     double(h.bounds.magnitude() / h.bounds.diagonal())));
+  if (warn && h.bounds.diagonal() > 0.0f && h.bounds.magnitude() > 10.0f * h.bounds.diagonal()) {
+    rad::warn(
+        {scene.path},
+        fmt::format("the scene lies {:.0f} times its size from the origin, where float precision "
+                    "is too coarse for its shadow rays; move it near the origin",
+                    double(h.bounds.magnitude() / h.bounds.diagonal())));
   }
-  if (b.dropped > 0) {
-    warn({scene.path}, fmt::format("dropped {} degenerate (zero-area) triangle{}", b.dropped,
-                                   b.dropped == 1 ? "" : "s"));
+  if (warn && b.dropped > 0) {
+    rad::warn({scene.path}, fmt::format("dropped {} degenerate (zero-area) triangle{}", b.dropped,
+                                        b.dropped == 1 ? "" : "s"));
   }
   return h;
 }

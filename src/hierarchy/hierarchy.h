@@ -73,7 +73,9 @@ struct BuildLimits {
 /// the names in Lights lists (every object of a listed name). Throws rad::Error if an object
 /// ends up empty or a list names no object. Copies (ObjectDescription::copy_of) are flattened,
 /// transforms applied (a mirroring one keeps each triangle's front); beyond `limits` it throws.
-Hierarchy build_hierarchy(const SceneDescription& scene, const BuildLimits& limits = {});
+/// With !warn it says nothing (a regrouped scene built again: the first build warned).
+Hierarchy build_hierarchy(const SceneDescription& scene, const BuildLimits& limits = {},
+                          bool warn = true);
 
 /// Whether a shooter whose Pure has SceneObject::influence `influence` lights triangle t.
 bool influence_reaches(const Hierarchy& h, int32_t influence, uint32_t t);

@@ -231,6 +231,12 @@ class Parser {
     if (!is_model_file(full.string())) {
       throw Error(file.loc, "'" + file.text + "' is not a model (.obj, .ply, .gltf or .glb)");
     }
+    // The model's Composites and Pures nest two deeper than the Model object (model_scene.h).
+    if (depth_ + 2 > kMaxNesting) {
+      throw Error(file.loc, fmt::format("objects nested more than {} deep (with the model's "
+                                        "groups and Pures)",
+                                        kMaxNesting));
+    }
     ModelOptions o;
     o.require_emission = false;  // the description's other objects may hold the lights
     const SceneDescription m = model_to_scene(read_model_file(full.string(), file.loc), o);

@@ -63,6 +63,14 @@ struct Element {
 enum class Format { Ascii, Little, Big };
 
 // Values of the body, one at a time, from text or binary.
+// The value of type T whose bytes (in this machine's order) start at `raw`.
+template <typename T>
+double as(const unsigned char* raw) {
+  T v;
+  std::memcpy(&v, raw, sizeof v);
+  return double(v);
+}
+
 class Body {
  public:
   Body(std::string_view bytes, size_t at, Format f, const std::string& path, int line)
@@ -79,39 +87,21 @@ class Body {
     if (swap) std::reverse(raw, raw + n);
     switch (t) {
       case Type::I8:
-        return double(int8_t(raw[0]));
+        return as<int8_t>(raw);
       case Type::U8:
-        return double(raw[0]);
-      case Type::I16: {
-        int16_t v;
-        std::memcpy(&v, raw, 2);
-        return v;
-      }
-      case Type::U16: {
-        uint16_t v;
-        std::memcpy(&v, raw, 2);
-        return v;
-      }
-      case Type::I32: {
-        int32_t v;
-        std::memcpy(&v, raw, 4);
-        return v;
-      }
-      case Type::U32: {
-        uint32_t v;
-        std::memcpy(&v, raw, 4);
-        return v;
-      }
-      case Type::F32: {
-        float v;
-        std::memcpy(&v, raw, 4);
-        return v;
-      }
-      case Type::F64: {
-        double v;
-        std::memcpy(&v, raw, 8);
-        return v;
-      }
+        return as<uint8_t>(raw);
+      case Type::I16:
+        return as<int16_t>(raw);
+      case Type::U16:
+        return as<uint16_t>(raw);
+      case Type::I32:
+        return as<int32_t>(raw);
+      case Type::U32:
+        return as<uint32_t>(raw);
+      case Type::F32:
+        return as<float>(raw);
+      case Type::F64:
+        return as<double>(raw);
     }
     return 0.0;
   }

@@ -13,18 +13,6 @@ static_assert(std::endian::native == std::endian::little, "buffers are sent as s
 
 json vec(const Vec3& v) { return json::array({v.x, v.y, v.z}); }
 
-const char* kind_name(ObjectKind k) {
-  switch (k) {
-    case ObjectKind::Assembly:
-      return "Assembly";
-    case ObjectKind::Composite:
-      return "Composite";
-    case ObjectKind::Pure:
-      return "Pure";
-  }
-  return "?";
-}
-
 void append(std::string& out, const void* data, size_t bytes) {
   out.append(static_cast<const char*>(data), bytes);
 }
@@ -52,7 +40,7 @@ std::string scene_json(const Hierarchy& h, const Camera& camera, double converge
     const SceneObject& o = h.objects[i];
     objects.push_back({{"id", i},
                        {"name", o.name},
-                       {"kind", kind_name(o.kind)},
+                       {"kind", to_string(o.kind)},
                        {"parent", o.parent},
                        {"children", o.children},
                        {"first_triangle", o.first_triangle},

@@ -234,6 +234,23 @@ Object "floor" Model "room.obj"
 Object "floor 2" Copy "floor" Translate <10 0 0>
 )");
   EXPECT_EQ(build_hierarchy(parse_scene_file(same)).triangles.size(), 1u + 2u * 6u);
+  // The model's two levels count towards the nesting limit, at the model's name.
+  auto nested = [&](int assemblies) {
+    std::string text = "\"deep\"\n";
+    for (int i = 0; i < assemblies; ++i) text += "Object \"a\" Assembly {\n";
+    text += "Object \"m\" Model \"room.obj\"\n";
+    for (int i = 0; i < assemblies; ++i) text += "}\n";
+    return write("deep.des", text);
+  };
+  EXPECT_NO_THROW(parse_scene_file(nested(250)));
+  try {
+    parse_scene_file(nested(255));
+    FAIL() << "a model nested past the limit";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("nested more than 256"), std::string::npos) << e.what();
+    // Line 1 the name, 255 Assemblies, then the Model; column 18 is its file name.
+    EXPECT_NE(std::string(e.what()).find("deep.des:257:18:"), std::string::npos) << e.what();
+  }
   // What is not a model, and a Model in a Composite, are errors at the file's name.
   const std::string bad = write("bad.des", "\"bad\"\nObject \"m\" Model \"x.off\"\n");
   try {
