@@ -170,15 +170,15 @@ struct ShotCase {
 // Does what step() does before shooting, then shoots once through a recorder.
 std::unique_ptr<ShotCase> prepare_shot(SolverState s, const VisibilityBackend& vis) {
   auto c = std::make_unique<ShotCase>();
-  const std::optional<int32_t> shooter = choose_shooter(s);
+  const std::optional<Shooter> shooter = choose_shooter(s);
   if (!shooter) return nullptr;
   c->index = s.shots + 1;
-  c->src = make_shot_source(s, *shooter);
-  for (MeshVertex& v : s.mesh.polygons[size_t(*shooter)].vertices) v.unshot = Vec3(0.0f);
+  c->src = make_shot_source(s, shooter->cluster);
+  for (MeshVertex& v : s.mesh.polygons[size_t(shooter->cluster)].vertices) v.unshot = Vec3(0.0f);
   c->major =
-      s.options.major_shot_fraction > 0.0 && std::abs(s.unshot_energy[size_t(*shooter)]) >=
+      s.options.major_shot_fraction > 0.0 && std::abs(s.unshot_energy[size_t(shooter->cluster)]) >=
                                                  s.options.major_shot_fraction * s.emitted_energy;
-  s.unshot_energy[size_t(*shooter)] = 0.0;
+  s.unshot_energy[size_t(shooter->cluster)] = 0.0;
   c->before = s;
   c->size_before = state_size(s);
   RecordingBackend recorder(vis);

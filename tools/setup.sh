@@ -12,7 +12,7 @@ fi
 
 rad_packages=(g++ cmake ninja-build pkg-config libembree-dev libtbb-dev libglm-dev libgtest-dev
   libgmock-dev libbenchmark-dev libcli11-dev libfmt-dev nlohmann-json3-dev libstb-dev
-  libtinyexr-dev libtinygltf-dev libcpp-httplib-dev libtinyobjloader-dev)
+  libtinyexr-dev libtinygltf-dev libcpp-httplib-dev libtinyobjloader-dev libopenmpi-dev openmpi-bin)
 
 rad_install_missing() {
   local missing=()

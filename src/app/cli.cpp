@@ -1,6 +1,9 @@
 #include "app/cli.h"
 
+#include <tbb/info.h>
+
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -8,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/memory.h"
+#include "solver/ranks.h"
 
 namespace rad {
 
@@ -94,6 +98,11 @@ std::optional<CommandLine> parse_convert(std::vector<std::string> args, int* exi
 }
 
 }  // namespace
+
+int thread_count(const CommandLine& cmd) {
+  if (cmd.threads > 0) return cmd.threads;
+  return std::max(1, tbb::info::default_concurrency() / local_rank_count());
+}
 
 std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_code) {
   // The original's flags, spelled the modern way before CLI11 sees them.

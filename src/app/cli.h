@@ -57,6 +57,10 @@ struct CommandLine {
 /// and count. Throws rad::Error otherwise.
 void parse_shard(const std::string& text, int* index, int* count);
 
+/// Worker threads of one process: --threads, or the cores shared among the MPI ranks that run
+/// on this machine (all of them without MPI).
+int thread_count(const CommandLine& cmd);
+
 /// Parses argv. Accepts the original's single-dash flags (-noshadows, -minsize F). Returns
 /// nothing when the program should exit with `exit_code` (after --help or a usage error, which
 /// it prints).

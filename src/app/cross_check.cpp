@@ -106,7 +106,7 @@ class ComparingBackend final : public VisibilityBackend {
 int run_cross_check(const CommandLine& cmd) {
   const BackendKind first = cmd.backend, second = *cmd.cross_check;
   const Hierarchy h = load_hierarchy(cmd.scene, cmd.model, cmd.hierarchy);
-  const int threads = cmd.threads > 0 ? cmd.threads : tbb::info::default_concurrency();
+  const int threads = thread_count(cmd);
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
   std::printf("Cross-check of %s: %s against %s (%zu triangles)\n", cmd.scene.c_str(),
               to_string(first), to_string(second), h.triangles.size());

@@ -41,7 +41,8 @@ size_t peak_memory_bytes() {
 
 void write_stats_json(const std::string& path, const CommandLine& cmd, const std::string& scene,
                       const SolverState& s, StopReason stop, const RunTimes& t,
-                      const SeamReport& seams, uint64_t job_fingerprint) {
+                      const SeamReport& seams, uint64_t job_fingerprint,
+                      const std::vector<RankReport>& ranks) {
   using nlohmann::json;
   const VisibilityStats& r = s.stats.rays;
   const Vec3 ambient = ambient_radiosity(s);
@@ -61,7 +62,7 @@ void write_stats_json(const std::string& path, const CommandLine& cmd, const std
         {"triangles", s.hierarchy->triangles.size()}}},
       {"backend", to_string(cmd.backend)},
       {"packets", cmd.packets},
-      {"threads", cmd.threads > 0 ? cmd.threads : tbb::info::default_concurrency()},
+      {"threads", thread_count(cmd)},
       {"options",
        {{"shadows", s.options.shadows},
         {"samples", s.options.sample_grid * s.options.sample_grid},
@@ -117,6 +118,26 @@ void write_stats_json(const std::string& path, const CommandLine& cmd, const std
       {"peak_memory_bytes", peak_memory_bytes()},
       {"history", history},
   };
+  if (!ranks.empty()) {
+    // Per MPI rank: its share, its time, and the time it spent communicating (waiting for the
+    // slowest rank included) and the bytes it broadcast as the owner of a shooter.
+    json per_rank = json::array();
+    uint64_t bytes = 0, broadcasts = 0;
+    for (size_t i = 0; i < ranks.size(); ++i) {
+      const RankReport& k = ranks[i];
+      bytes += k.broadcast_bytes, broadcasts += k.broadcasts;
+      per_rank.push_back({{"rank", i},
+                          {"vertices", k.vertices},
+                          {"rays", k.stats.rays.rays},
+                          {"shoot_seconds", k.stats.shoot_seconds},
+                          {"refine_seconds", k.stats.refine_seconds},
+                          {"communication_seconds", k.communication_seconds},
+                          {"broadcast_bytes", k.broadcast_bytes}});
+    }
+    j["mpi"] = {{"ranks", ranks.size()},
+                {"shot_source_bytes_mean", broadcasts ? double(bytes) / double(broadcasts) : 0.0},
+                {"per_rank", per_rank}};
+  }
   // Hex: JSON numbers are doubles to most readers.
   if (job_fingerprint != 0) j["job_fingerprint"] = fmt::format("{:016x}", job_fingerprint);
   AtomicFile f(path);

@@ -4,9 +4,11 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "app/cli.h"
 #include "export/seams.h"
+#include "solver/distribute.h"
 #include "solver/solver.h"
 
 namespace rad {
@@ -22,7 +24,8 @@ std::string format_statistics(const SolverState& s, double elapsed_seconds);
 /// Writes the JSON statistics (schema "rad-stats", version 1; see README) atomically.
 void write_stats_json(const std::string& path, const CommandLine& cmd, const std::string& scene,
                       const SolverState& s, StopReason stop, const RunTimes& times,
-                      const SeamReport& seams, uint64_t job_fingerprint = 0);
+                      const SeamReport& seams, uint64_t job_fingerprint = 0,
+                      const std::vector<RankReport>& ranks = {});
 
 /// The "job_fingerprint" a stats file was written with (rad batch's record that a scene's
 /// outputs are complete), or nothing when the file is missing, unreadable or has none.

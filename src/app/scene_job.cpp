@@ -27,6 +27,7 @@
 #include "mesh/patch_mesh.h"
 #include "scene/scene_file.h"
 #include "solver/checkpoint.h"
+#include "solver/distribute.h"
 #include "solver/memory_estimate.h"
 #include "visibility/backend.h"
 
@@ -51,12 +52,15 @@ uint64_t job_fingerprint(const CommandLine& cmd, const SceneJob& job, const Hier
   return f.value();
 }
 
-SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job) {
+SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job, Ranks* ranks) {
   const auto start = Clock::now();
-  Progress progress(cmd.quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);
+  // Under MPI rank 0 speaks and writes; the others solve their share quietly.
+  const bool lead = !ranks || ranks->rank() == 0;
+  const bool quiet = cmd.quiet || !lead;
+  Progress progress(quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);
   // Stages go to stdout as the original printed them; the progress bar lives on stderr.
   auto say = [&](const std::string& s) {
-    if (cmd.quiet) return;
+    if (quiet) return;
     std::fputs((s + "\n").c_str(), stdout);
     std::fflush(stdout);
   };
@@ -84,7 +88,7 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job) {
   }
 
   say("Initializing...");
-  const int threads = cmd.threads > 0 ? cmd.threads : tbb::info::default_concurrency();
+  const int threads = thread_count(cmd);
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
   auto t = Clock::now();
   const std::unique_ptr<VisibilityBackend> visibility =
@@ -98,6 +102,7 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job) {
     read_checkpoint(cmd.checkpoint, state, fingerprint);
     say(fmt::format("Resuming from checkpoint {} ({} shots done)", cmd.checkpoint, state.shots));
   }
+  if (ranks) distribute(state, *ranks);
   times.build = since(t);
 
   // The mesh only grows by subdivision, down to --min-size: refuse a solve that could outgrow
@@ -124,14 +129,29 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job) {
                   format_bytes(now), format_bytes(growth), format_bytes(per_shot),
                   format_bytes(double(memory_limit))));
 
-  say(fmt::format("Starting Computation ({} triangles, {} backend, {} thread{})",
+  say(fmt::format("Starting Computation ({} triangles, {} backend, {} thread{}{})",
                   hierarchy.triangles.size(), to_string(cmd.backend), threads,
-                  threads == 1 ? "" : "s"));
+                  threads == 1 ? "" : "s",
+                  ranks ? fmt::format(" on each of {} MPI ranks", ranks->size()) : ""));
   t = Clock::now();
   auto saved = Clock::now();
+  // Under MPI rank 0 writes the checkpoint of the whole state (the same file one process
+  // writes, so either resumes it), gathered from the ranks and then released again.
   const auto save = [&] {
     if (cmd.checkpoint.empty()) return;
-    write_checkpoint(cmd.checkpoint, state, fingerprint);
+    if (ranks) {
+      const std::vector<RankReport> reports = collect(state);
+      if (lead) {
+        const SolverStats own = state.stats;
+        const double absorbed = state.absorbed_energy;
+        state.stats = total_stats(reports), state.absorbed_energy = total_absorbed(reports);
+        write_checkpoint(cmd.checkpoint, state, fingerprint);
+        state.stats = own, state.absorbed_energy = absorbed;
+        release_foreign(state);
+      }
+    } else {
+      write_checkpoint(cmd.checkpoint, state, fingerprint);
+    }
     saved = Clock::now();
   };
   const double log_goal = std::log(std::max(cmd.solver.converge, 1e-12));
@@ -142,7 +162,9 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job) {
         const double f = r.unshot_fraction > 0 ? std::log(r.unshot_fraction) / log_goal : 1.0;
         progress.update(f, fmt::format("shot {}  unshot {:.2e}  subdivisions {}", r.shot,
                                        r.unshot_fraction, s.stats.subdivisions));
-        if (since(saved) >= cmd.checkpoint_every) save();
+        bool due = !cmd.checkpoint.empty() && since(saved) >= cmd.checkpoint_every;
+        if (ranks && !cmd.checkpoint.empty()) due = ranks->max(due && lead) > 0;  // rank 0's clock
+        if (due) save();
       },
       [&]() -> std::optional<StopReason> {
         if (interrupt_signal()) return StopReason::Interrupted;
@@ -150,6 +172,13 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job) {
         return std::nullopt;
       });
   save();
+  // Rank 0 takes every rank's polygons and counters: from here on its state is whole.
+  std::vector<RankReport> reports;
+  if (ranks) {
+    reports = collect(state);
+    if (!lead) return {stop, state.shots, 0, state.unshot_fraction(), since(start)};
+    state.stats = total_stats(reports), state.absorbed_energy = total_absorbed(reports);
+  }
   times.solve = since(t);
   progress.finish(fmt::format("{} after {} shots", to_string(stop), state.shots));
   if (stop == StopReason::MemoryLimit) {
@@ -185,9 +214,9 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job) {
   times.total = since(start);
   if (!job.stats_json.empty()) {
     write_stats_json(job.stats_json, cmd, job.scene, state, stop, times,
-                     measure_seams(mesh, hierarchy.triangles), job_id);
+                     measure_seams(mesh, hierarchy.triangles), job_id, reports);
   }
-  if (!cmd.quiet) std::fputs(format_statistics(state, times.total).c_str(), stdout);
+  if (!quiet) std::fputs(format_statistics(state, times.total).c_str(), stdout);
   return {stop, state.shots, count_vertices(state.mesh), state.unshot_fraction(), times.total};
 }
 

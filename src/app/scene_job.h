@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "app/cli.h"
+#include "solver/ranks.h"
 #include "solver/solver.h"
 
 namespace rad {
@@ -36,7 +37,8 @@ uint64_t job_fingerprint(const CommandLine& cmd, const SceneJob& job, const Hier
 
 /// Runs `job` with the options of `cmd`, printing the original's stage lines and statistics
 /// unless quiet. Every output is checked before solving and written atomically. Throws
-/// rad::Error on bad input.
-SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job);
+/// rad::Error on bad input. With `ranks` (under MPI) every rank runs it together: each
+/// receives for its share of the scene, and rank 0 alone speaks and writes the outputs.
+SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job, Ranks* ranks = nullptr);
 
 }  // namespace rad

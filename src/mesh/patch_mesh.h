@@ -95,6 +95,7 @@ Mesh make_mesh(const Hierarchy& h);
 /// Calls f(element_index) for every leaf of polygon `p`, depth-first, children in order.
 template <typename F>
 void for_each_leaf(const PolygonMesh& p, F&& f) {
+  if (p.elements.empty()) return;  // another MPI rank's polygon (solver/distribute.h)
   uint32_t stack[64];
   int top = 0;
   stack[top++] = 0;

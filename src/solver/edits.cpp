@@ -41,6 +41,7 @@ void set_material(SolverState& s, int32_t object, const Material& m, const Visib
   for (uint32_t t = o.first_triangle; t < o.first_triangle + o.triangle_count; ++t) {
     s.unshot_energy[t] = polygon_unshot_energy(s.mesh.polygons[t]);
   }
+  update_unshot_totals(s);
 }
 
 size_t force_subdivide(SolverState& s, int32_t polygon, const VisibilityBackend& vis) {
@@ -70,6 +71,7 @@ size_t force_subdivide(SolverState& s, int32_t polygon, const VisibilityBackend&
   for (const GatherScratch& sc : scratch) s.stats += sc.stats;
   s.stats.exact_midpoints += created.size();
   s.unshot_energy[size_t(polygon)] = polygon_unshot_energy(m);
+  update_unshot_totals(s);
   return created.size();
 }
 

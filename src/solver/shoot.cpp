@@ -54,12 +54,12 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
   const GatherSettings settings = gather_settings(s);
   const SharedVertices& shared = s.shared;
   received.assign(tris.size(), 0);
-  // With a Lights list only the triangles it names are looked at.
+  // With a Lights list only the triangles it names are looked at; under MPI, only this rank's.
   const int32_t influence = shooter_influence(s, src);
   const std::vector<TriangleRange> all{{0, uint32_t(tris.size())}};
   for (const TriangleRange& r : influence < 0 ? all : s.hierarchy->objects[size_t(influence)].lit) {
     tbb::parallel_for(size_t(r.first), size_t(r.first) + r.count,
-                      [&](size_t p) { received[p] = may_receive(s, p, src); });
+                      [&](size_t p) { received[p] = s.owns(p) && may_receive(s, p, src); });
   }
   // A shared vertex is skipped when the one that gathers for it is in a received polygon.
   auto copied = [&](size_t p, size_t v) {

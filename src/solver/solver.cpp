@@ -4,7 +4,9 @@
 
 #include <chrono>
 #include <cmath>
+#include <tuple>
 
+#include "solver/distribute.h"
 #include "solver/refine.h"
 #include "solver/shoot.h"
 
@@ -17,29 +19,30 @@ double cluster_unshot_energy(const SolverState& s, size_t c) {
   return e;
 }
 
-std::optional<int32_t> choose_shooter(const SolverState& s) {
+std::optional<Shooter> choose_shooter(const SolverState& s) {
   // Every shot changes the energy of nearly every cluster, so a heap would be rebuilt each time:
   // one parallel pass over the clusters' sums instead, then the largest (ties: lowest index).
+  // Under MPI each rank looks at its own clusters, and one reduction picks among the ranks.
   const size_t nc = s.clusters.size();
-  std::vector<double> energy(nc);
-  tbb::parallel_for(size_t(0), nc, [&](size_t c) { energy[c] = cluster_unshot_energy(s, c); });
+  std::vector<double> energy(nc, 0.0);
+  tbb::parallel_for(size_t(0), nc, [&](size_t c) {
+    if (s.owns_cluster(c)) energy[c] = cluster_unshot_energy(s, c);
+  });
   int32_t best = -1;
   double best_energy = 0.0;
   for (size_t c = 0; c < nc; ++c) {
     if (energy[c] > best_energy) best_energy = energy[c], best = int32_t(c);
   }
-  if (best < 0) return std::nullopt;
-  return best;
+  if (s.ranks) std::tie(best_energy, best) = s.ranks->max_location(best_energy, best);
+  if (best < 0 || !(best_energy > 0.0)) return std::nullopt;
+  return Shooter{best, best_energy};
 }
 
-std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const std::optional<int32_t> shooter = choose_shooter(s);
-  if (!shooter) return std::nullopt;
-  const size_t c = size_t(*shooter);
-  const Clusters& k = s.clusters;
-  const double energy = cluster_unshot_energy(s, c);
+namespace {
 
+// Clears cluster c's unshot radiosity into the source of the next shot.
+ShotSource freeze_source(SolverState& s, size_t c, double energy) {
+  const Clusters& k = s.clusters;
   // Overshooting (Feda, Purgathofer 1992): also shoot what the source will get back from the
   // ambient; its unshot radiosity becomes that much negative, shot later if still significant.
   // A cluster lies in one Pure: one reflectance.
@@ -54,7 +57,7 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
     }
   };
   if (s.options.overshoot) set_unshot(over, false);
-  ShotSource src = make_shot_source(s, *shooter);
+  ShotSource src = make_shot_source(s, int32_t(c));
   set_unshot(-over, true);
   for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) {
     const uint32_t p = k.polygons[j];
@@ -63,6 +66,22 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
 
   src.major = s.options.major_shot_fraction > 0.0 &&
               energy >= s.options.major_shot_fraction * s.emitted_energy;
+  return src;
+}
+
+}  // namespace
+
+std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::optional<Shooter> shooter = choose_shooter(s);
+  if (!shooter) return std::nullopt;
+  const size_t c = size_t(shooter->cluster);
+
+  // The cluster's owner freezes it as the source (the one rank that holds its radiosity) and
+  // shares it with the other ranks.
+  ShotSource src;
+  if (s.owns_cluster(c)) src = freeze_source(s, c, shooter->energy);
+  if (s.ranks) share_shot_source(s, src, s.cluster_owner[c]);
   const bool major = src.major;
   std::vector<uint8_t> received;
   shoot_to_receivers(s, src, vis, major, received);
@@ -90,12 +109,13 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
     s.unshot_energy[p] = polygon_unshot_energy(m);
   });
   for (double a : absorbed) s.absorbed_energy += a;
+  update_unshot_totals(s);
   const auto t2 = std::chrono::steady_clock::now();
   s.stats.shoot_seconds += std::chrono::duration<double>(t1 - t0).count();
   s.stats.refine_seconds += std::chrono::duration<double>(t2 - t1).count();
 
   ++s.shots;
-  ShotRecord r{s.shots, *shooter, s.stats.shoot_seconds + s.stats.refine_seconds,
+  ShotRecord r{s.shots, shooter->cluster, s.stats.shoot_seconds + s.stats.refine_seconds,
                s.unshot_fraction()};
   s.history.push_back(r);
   return r;
@@ -126,15 +146,19 @@ StopReason solve(SolverState& s, const VisibilityBackend& vis,
   const SolverOptions& o = s.options;
   for (;;) {
     if (s.unshot_fraction() <= o.converge) return StopReason::Converged;
-    if (stop) {
-      if (const std::optional<StopReason> why = stop()) return *why;
-    }
     if (o.max_shots >= 0 && s.shots >= o.max_shots) return StopReason::MaxShots;
-    if (o.time_limit > 0.0 &&
+    std::optional<StopReason> why = stop ? stop() : std::nullopt;
+    if (!why && o.time_limit > 0.0 &&
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >=
             o.time_limit) {
-      return StopReason::TimeLimit;
+      why = StopReason::TimeLimit;
     }
+    // The ranks stop together: any rank's reason (a signal, its clock, its memory) stops all.
+    if (s.ranks) {
+      const int64_t agreed = s.ranks->max(why ? int64_t(*why) + 1 : 0);
+      why = agreed > 0 ? std::optional(StopReason(agreed - 1)) : std::nullopt;
+    }
+    if (why) return *why;
     const std::optional<ShotRecord> r = step(s, vis);
     if (!r) return StopReason::NothingToShoot;
     if (on_shot) on_shot(s, *r);

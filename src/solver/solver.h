@@ -14,13 +14,19 @@ namespace rad {
 /// Unshot energy of cluster c: the sum of its polygons' absolute unshot energies.
 double cluster_unshot_energy(const SolverState& s, size_t c);
 
+struct Shooter {
+  int32_t cluster;
+  double energy;  // its unshot energy
+};
+
 /// The cluster with the most unshot energy; ties go to the lowest index. None when nothing is
-/// left to shoot.
-std::optional<int32_t> choose_shooter(const SolverState& s);
+/// left to shoot. Collective under MPI.
+std::optional<Shooter> choose_shooter(const SolverState& s);
 
 /// One shot: choose the shooter, shoot it to every receiving vertex, refine the receivers,
 /// update the energy bookkeeping and the history. Returns the record, or nothing when there
-/// was nothing to shoot. Parallel inside (TBB); call from one thread.
+/// was nothing to shoot. Parallel inside (TBB); call from one thread. Under MPI every rank calls
+/// it together and receives for its own polygons only.
 std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis);
 
 /// Why solve() stopped.

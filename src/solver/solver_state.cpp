@@ -1,8 +1,11 @@
 #include "solver/solver_state.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <cstring>
@@ -10,6 +13,7 @@
 
 #include "mesh/sample_points.h"
 #include "mesh/subdivide.h"
+#include "solver/ranks.h"
 #include "visibility/segment.h"
 
 namespace rad {
@@ -38,10 +42,31 @@ double polygon_unshot_energy(const PolygonMesh& p) {
   return e;
 }
 
-double SolverState::unshot_total() const {
-  double t = 0.0;
-  for (double e : unshot_energy) t += std::abs(e);
-  return t;
+bool SolverState::owns_cluster(size_t c) const {
+  return cluster_owner.empty() || cluster_owner[c] == uint32_t(ranks->rank());
+}
+
+void update_unshot_totals(SolverState& s) {
+  const double scale = std::ldexp(1.0, 40) / (s.emitted_energy > 0.0 ? s.emitted_energy : 1.0);
+  const double most = std::ldexp(1.0, 52);  // 2^12 emitted energies: no sum of them overflows
+  auto fixed = [&](double e) { return int64_t(std::clamp(std::round(e * scale), -most, most)); };
+  using Sums = std::array<int64_t, 2>;
+  Sums t = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, s.unshot_energy.size(), 4096), Sums{0, 0},
+      [&](const auto& r, Sums acc) {
+        for (size_t p = r.begin(); p != r.end(); ++p) {
+          const int64_t q = fixed(s.unshot_energy[p]);
+          acc[0] += q < 0 ? -q : q;
+          acc[1] += q;
+        }
+        return acc;
+      },
+      [](Sums a, const Sums& b) {
+        return Sums{a[0] + b[0], a[1] + b[1]};
+      });
+  if (s.ranks) s.ranks->sum(t);
+  s.unshot_abs_total = double(t[0]) / scale;
+  s.unshot_signed_total = double(t[1]) / scale;
 }
 
 SharedVertices find_shared_vertices(const Mesh& mesh, const Clusters& clusters) {
@@ -125,6 +150,7 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   const int max_m = std::max(options.sample_grid, options.max_sample_grid);
   s.clusters = make_clusters(h, float(max_m) * s.max_size);
   s.shared = find_shared_vertices(s.mesh, s.clusters);
+  update_unshot_totals(s);
   s.barycentric_grids.resize(size_t(4 * max_m) + 1);
   for (int q = 1; q <= 4 * max_m; ++q)
     s.barycentric_grids[size_t(q)] = regular_sample_barycentrics(q);
@@ -149,9 +175,8 @@ DVec3 interreflection(const DVec3& mean_rho) {
 
 float ambient_estimate(const SolverState& s) {
   if (s.total_area <= 0.0) return 0.0f;
-  double unshot = 0.0;
-  for (double e : s.unshot_energy) unshot += e;
-  return float(unshot / s.total_area * mean_component(Vec3(interreflection(mean_reflectance(s)))));
+  return float(s.unshot_signed_total / s.total_area *
+               mean_component(Vec3(interreflection(mean_reflectance(s)))));
 }
 
 Vec3 ambient_radiosity(const SolverState& s) {

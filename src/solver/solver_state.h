@@ -50,6 +50,8 @@ struct SharedVertices {
   }
 };
 
+class Ranks;
+
 struct SolverState {
   const Hierarchy* hierarchy = nullptr;
   SolverOptions options;
@@ -79,6 +81,17 @@ struct SolverState {
   int64_t shots = 0;
   SolverStats stats;
   std::vector<ShotRecord> history;
+  /// Sums over the polygons (and the ranks) of |unshot_energy| and of unshot_energy, kept by
+  /// update_unshot_totals.
+  double unshot_abs_total = 0.0, unshot_signed_total = 0.0;
+  /// Under MPI (solver/distribute.h): the ranks solving together, the owner of each cluster and
+  /// which polygons are this rank's. One process: null and empty, every polygon its own.
+  Ranks* ranks = nullptr;
+  std::vector<uint32_t> cluster_owner;
+  std::vector<uint8_t> owned;
+
+  bool owns(size_t polygon) const { return owned.empty() || owned[polygon]; }
+  bool owns_cluster(size_t c) const;
 
   const Material& material_of(size_t polygon) const {
     return materials[size_t(hierarchy->triangles.object[polygon])];
@@ -88,9 +101,8 @@ struct SolverState {
     const Material& m = material_of(p);
     return m.emission + m.reflectance * mesh.polygons[p].vertices[v].irradiance;
   }
-  double unshot_total() const;
   double unshot_fraction() const {
-    return emitted_energy > 0.0 ? unshot_total() / emitted_energy : 0.0;
+    return emitted_energy > 0.0 ? unshot_abs_total / emitted_energy : 0.0;
   }
 };
 
@@ -100,6 +112,12 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options);
 
 /// The initial mesh's vertices shared within planar clusters.
 SharedVertices find_shared_vertices(const Mesh& mesh, const Clusters& clusters);
+
+/// Sets the unshot totals from unshot_energy after it changed: summed in fixed point (2^-40 of
+/// the emitted energy), which is exact and so the same in any order and across any split of
+/// the polygons between ranks (summed over them too: collective under MPI). Floating-point sums
+/// would differ in their last bits, and the convergence test with them.
+void update_unshot_totals(SolverState& s);
 
 /// Unshot energy of polygon p integrated over its leaf elements (mean over channels).
 double polygon_unshot_energy(const PolygonMesh& p);

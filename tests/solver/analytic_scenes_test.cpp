@@ -167,7 +167,7 @@ TEST_P(AnalyticScenes, FurnaceBoxConvergesToEOverOneMinusRho) {
       worst = std::max(worst, std::abs(b.y - expected) / expected);
     });
   }
-  const double balance = (r->s.absorbed_energy + r->s.unshot_total()) / r->s.emitted_energy;
+  const double balance = (r->s.absorbed_energy + r->s.unshot_abs_total) / r->s.emitted_energy;
   std::printf("furnace: worst vertex error %.4f%%, (absorbed + unshot) / emitted = %.5f\n",
               100 * worst, balance);
   EXPECT_LE(worst, 0.005);

@@ -1,0 +1,112 @@
+#include "solver/distribute.h"
+
+#include <fmt/format.h>
+
+#include <cassert>
+#include <type_traits>
+
+#include "solver/state_codec.h"
+
+namespace rad {
+
+std::vector<uint32_t> assign_clusters(const SolverState& s, int ranks) {
+  assert(ranks >= 1);
+  const Clusters& k = s.clusters;
+  std::vector<uint64_t> load(size_t(ranks), 0);
+  std::vector<uint32_t> owner(k.size(), 0);
+  for (size_t c = 0; c < k.size(); ++c) {
+    size_t least = 0;
+    for (size_t r = 1; r < load.size(); ++r) least = load[r] < load[least] ? r : least;
+    owner[c] = uint32_t(least);
+    for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j)
+      load[least] += s.mesh.polygons[k.polygons[j]].vertex_count();
+  }
+  return owner;
+}
+
+void distribute(SolverState& s, Ranks& ranks) {
+  s.ranks = &ranks;
+  s.cluster_owner = assign_clusters(s, ranks.size());
+  s.owned.assign(s.mesh.polygons.size(), 0);
+  const Clusters& k = s.clusters;
+  for (size_t c = 0; c < k.size(); ++c) {
+    if (s.cluster_owner[c] != uint32_t(ranks.rank())) continue;
+    for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) s.owned[k.polygons[j]] = 1;
+  }
+  release_foreign(s);
+  if (ranks.rank() != 0) {  // rank 0 keeps the counters a resumed checkpoint brought
+    s.stats = SolverStats{};
+    s.absorbed_energy = 0.0;
+  }
+  update_unshot_totals(s);
+}
+
+void release_foreign(SolverState& s) {
+  for (size_t p = 0; p < s.mesh.polygons.size(); ++p) {
+    if (s.owns(p)) continue;
+    s.mesh.polygons[p] = PolygonMesh{};
+    s.unshot_energy[p] = 0.0;
+  }
+}
+
+std::vector<RankReport> collect(SolverState& s) {
+  static_assert(std::is_trivially_copyable_v<RankReport>);
+  assert(s.ranks);
+  Ranks& ranks = *s.ranks;
+  RankReport mine;
+  mine.stats = s.stats;
+  mine.absorbed_energy = s.absorbed_energy;
+  mine.communication_seconds = ranks.communication_seconds;
+  mine.broadcast_bytes = ranks.broadcast_bytes;
+  mine.broadcasts = ranks.broadcasts;
+  for (size_t p = 0; p < s.mesh.polygons.size(); ++p)
+    if (s.owns(p)) mine.vertices += s.mesh.polygons[p].vertex_count();
+  ByteWriter w;
+  w.pod(mine);
+  if (ranks.rank() != 0) {
+    for (size_t p = 0; p < s.mesh.polygons.size(); ++p) {
+      if (!s.owns(p)) continue;
+      w.pod(uint32_t(p));
+      write_polygon(w, s.mesh.polygons[p]);
+      w.pod(s.unshot_energy[p]);
+    }
+  }
+  std::vector<std::string> parts = ranks.gather(std::move(w.out));
+  std::vector<RankReport> reports;
+  for (size_t r = 0; r < parts.size(); ++r) {
+    ByteReader in(parts[r], 0, fmt::format("rank {}", r), "message between ranks");
+    reports.push_back(in.pod<RankReport>());
+    while (r > 0 && !in.done()) {
+      const auto p = in.pod<uint32_t>();
+      if (p >= s.mesh.polygons.size() || s.cluster_owner[s.clusters.cluster_of[p]] != r)
+        in.fail(fmt::format("polygon {} is not the rank's", p));
+      read_polygon(in, s.mesh.polygons[p]);
+      s.unshot_energy[p] = in.pod<double>();
+    }
+  }
+  return reports;
+}
+
+SolverStats total_stats(const std::vector<RankReport>& reports) {
+  SolverStats t;
+  for (const RankReport& r : reports) t += r.stats;
+  return t;
+}
+
+double total_absorbed(const std::vector<RankReport>& reports) {
+  double t = 0.0;
+  for (const RankReport& r : reports) t += r.absorbed_energy;
+  return t;
+}
+
+void share_shot_source(SolverState& s, ShotSource& src, uint32_t owner) {
+  assert(s.ranks);
+  ByteWriter w;
+  if (uint32_t(s.ranks->rank()) == owner) write_shot(w, src);
+  s.ranks->broadcast(w.out, int(owner));
+  if (uint32_t(s.ranks->rank()) == owner) return;
+  ByteReader in(w.out, 0, fmt::format("rank {}", owner), "message between ranks");
+  src = read_shot(in, s.clusters.size());
+}
+
+}  // namespace rad
