@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <thread>
 
 #include "core/error.h"
 #include "core/memory.h"
@@ -101,7 +102,11 @@ std::optional<CommandLine> parse_convert(std::vector<std::string> args, int* exi
 
 int thread_count(const CommandLine& cmd) {
   if (cmd.threads > 0) return cmd.threads;
-  return std::max(1, tbb::info::default_concurrency() / local_rank_count());
+  // A process bound to some cores (mpirun binds each rank) uses those; an unbound one shares
+  // the machine with the other ranks on it.
+  const int cores = tbb::info::default_concurrency();
+  if (cores < int(std::thread::hardware_concurrency())) return cores;
+  return std::max(1, cores / local_rank_count());
 }
 
 std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_code) {

@@ -96,20 +96,24 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job, Ranks*
   SolverState state = make_solver_state(hierarchy, cmd.solver);
 
   const uint64_t fingerprint =
-      cmd.checkpoint.empty() ? 0 : solve_fingerprint(hierarchy, cmd.solver, cmd.backend);
+      cmd.checkpoint.empty() && !ranks ? 0 : solve_fingerprint(hierarchy, cmd.solver, cmd.backend);
   if (!cmd.checkpoint.empty()) remove_stale_temporaries(cmd.checkpoint);
   if (!cmd.checkpoint.empty() && std::filesystem::exists(cmd.checkpoint)) {
     read_checkpoint(cmd.checkpoint, state, fingerprint);
     say(fmt::format("Resuming from checkpoint {} ({} shots done)", cmd.checkpoint, state.shots));
   }
-  if (ranks) distribute(state, *ranks);
-  times.build = since(t);
-
   // The mesh only grows by subdivision, down to --min-size: refuse a solve that could outgrow
-  // the memory before spending any time on it, and stop one that reaches it.
+  // the memory before spending any time on it, and stop one that reaches it. Under MPI the
+  // machine's memory is shared by its ranks, and rank 0 holds the whole mesh at the end (the
+  // bound is the whole scene's on every rank).
   const size_t memory_limit =
-      cmd.max_memory > 0 ? cmd.max_memory : size_t(0.9 * double(machine_memory_bytes()));
-  const double now = double(resident_bytes()), growth = worst_case_growth_bytes(state);
+      cmd.max_memory > 0
+          ? cmd.max_memory
+          : size_t(0.9 * double(machine_memory_bytes()) / double(ranks ? local_rank_count() : 1));
+  const double growth = worst_case_growth_bytes(state);
+  if (ranks) distribute(state, *ranks, fingerprint ^ uint64_t(ranks->size()));
+  times.build = since(t);
+  const double now = double(resident_bytes());
   double per_shot = 0.0;
   for (size_t c = 0; c < state.clusters.size(); ++c)
     per_shot = std::max(per_shot, shot_log_bytes(state, c));
@@ -136,23 +140,25 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job, Ranks*
   t = Clock::now();
   auto saved = Clock::now();
   // Under MPI rank 0 writes the checkpoint of the whole state (the same file one process
-  // writes, so either resumes it), gathered from the ranks and then released again.
-  const auto save = [&] {
-    if (cmd.checkpoint.empty()) return;
+  // writes, so either resumes it), gathered from the ranks; between shots it then releases the
+  // other ranks' polygons again.
+  const auto save = [&](bool last) -> std::vector<RankReport> {
+    std::vector<RankReport> reports;
+    if (cmd.checkpoint.empty()) return reports;
     if (ranks) {
-      const std::vector<RankReport> reports = collect(state);
+      reports = collect(state);
       if (lead) {
         const SolverStats own = state.stats;
         const double absorbed = state.absorbed_energy;
         state.stats = total_stats(reports), state.absorbed_energy = total_absorbed(reports);
         write_checkpoint(cmd.checkpoint, state, fingerprint);
-        state.stats = own, state.absorbed_energy = absorbed;
-        release_foreign(state);
+        if (!last) state.stats = own, state.absorbed_energy = absorbed, release_foreign(state);
       }
     } else {
       write_checkpoint(cmd.checkpoint, state, fingerprint);
     }
     saved = Clock::now();
+    return reports;
   };
   const double log_goal = std::log(std::max(cmd.solver.converge, 1e-12));
   install_interrupt_handlers();
@@ -164,21 +170,23 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job, Ranks*
                                        r.unshot_fraction, s.stats.subdivisions));
         bool due = !cmd.checkpoint.empty() && since(saved) >= cmd.checkpoint_every;
         if (ranks && !cmd.checkpoint.empty()) due = ranks->max(due && lead) > 0;  // rank 0's clock
-        if (due) save();
+        if (due) save(false);
       },
       [&]() -> std::optional<StopReason> {
         if (interrupt_signal()) return StopReason::Interrupted;
         if (memory_limit > 0 && resident_bytes() > memory_limit) return StopReason::MemoryLimit;
         return std::nullopt;
       });
-  save();
-  // Rank 0 takes every rank's polygons and counters: from here on its state is whole.
+  // Rank 0 takes every rank's polygons and counters (once: with a checkpoint, its save does
+  // it): from here on its state is whole.
   std::vector<RankReport> reports;
-  if (ranks) {
+  if (ranks && cmd.checkpoint.empty()) {
     reports = collect(state);
-    if (!lead) return {stop, state.shots, 0, state.unshot_fraction(), since(start)};
-    state.stats = total_stats(reports), state.absorbed_energy = total_absorbed(reports);
+    if (lead) state.stats = total_stats(reports), state.absorbed_energy = total_absorbed(reports);
+  } else {
+    reports = save(true);
   }
+  if (!lead) return {stop, state.shots, 0, state.unshot_fraction(), since(start)};
   times.solve = since(t);
   progress.finish(fmt::format("{} after {} shots", to_string(stop), state.shots));
   if (stop == StopReason::MemoryLimit) {

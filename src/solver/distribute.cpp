@@ -5,6 +5,7 @@
 #include <cassert>
 #include <type_traits>
 
+#include "core/error.h"
 #include "solver/state_codec.h"
 
 namespace rad {
@@ -24,7 +25,15 @@ std::vector<uint32_t> assign_clusters(const SolverState& s, int ranks) {
   return owner;
 }
 
-void distribute(SolverState& s, Ranks& ranks) {
+void distribute(SolverState& s, Ranks& ranks, uint64_t identity) {
+  // Every rank must start from the same state: a scene or a checkpoint that one node sees
+  // differently would make the ranks shoot different shots and wait on each other for ever.
+  auto same = [&](int64_t v) { return ranks.max(v) == -ranks.max(-v); };
+  if (!same(int64_t(identity >> 2)) || !same(s.shots)) {
+    throw Error(
+        "the ranks do not hold the same solve: the scene, the options or the checkpoint differ "
+        "between them (is every file the same on every node?)");
+  }
   s.ranks = &ranks;
   s.cluster_owner = assign_clusters(s, ranks.size());
   s.owned.assign(s.mesh.polygons.size(), 0);
@@ -71,25 +80,37 @@ std::vector<RankReport> collect(SolverState& s) {
       w.pod(s.unshot_energy[p]);
     }
   }
-  std::vector<std::string> parts = ranks.gather(std::move(w.out));
+  // Every polygon of every rank must come: count them as they arrive.
+  std::vector<uint64_t> expected(size_t(ranks.size()), 0), received(size_t(ranks.size()), 0);
+  for (size_t p = 0; p < s.mesh.polygons.size(); ++p)
+    ++expected[s.cluster_owner[s.clusters.cluster_of[p]]];
   std::vector<RankReport> reports;
-  for (size_t r = 0; r < parts.size(); ++r) {
-    ByteReader in(parts[r], 0, fmt::format("rank {}", r), "message between ranks");
+  ranks.gather(std::move(w.out), [&](int r, std::string& part) {
+    ByteReader in(part, 0, fmt::format("rank {}", r), "message between ranks");
     reports.push_back(in.pod<RankReport>());
     while (r > 0 && !in.done()) {
       const auto p = in.pod<uint32_t>();
-      if (p >= s.mesh.polygons.size() || s.cluster_owner[s.clusters.cluster_of[p]] != r)
+      if (p >= s.mesh.polygons.size() || s.cluster_owner[s.clusters.cluster_of[p]] != uint32_t(r))
         in.fail(fmt::format("polygon {} is not the rank's", p));
       read_polygon(in, s.mesh.polygons[p]);
       s.unshot_energy[p] = in.pod<double>();
+      ++received[size_t(r)];
     }
-  }
+    if (r > 0 && received[size_t(r)] != expected[size_t(r)])
+      in.fail(fmt::format("{} of its {} polygons", received[size_t(r)], expected[size_t(r)]));
+    std::string().swap(part);  // decoded: free it before the next rank's arrives
+  });
   return reports;
 }
 
 SolverStats total_stats(const std::vector<RankReport>& reports) {
   SolverStats t;
   for (const RankReport& r : reports) t += r.stats;
+  // Times are rank 0's wall clock (the ranks shoot at once); each rank's are in its report.
+  if (!reports.empty()) {
+    t.shoot_seconds = reports[0].stats.shoot_seconds;
+    t.refine_seconds = reports[0].stats.refine_seconds;
+  }
   return t;
 }
 

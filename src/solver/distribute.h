@@ -30,8 +30,9 @@ std::vector<uint32_t> assign_clusters(const SolverState& s, int ranks);
 
 /// Makes `s` this rank's share of the solve: sets s.ranks, s.cluster_owner and s.owned, frees
 /// the meshes and zeroes the unshot energies of the polygons of other ranks, and sums the unshot
-/// totals over the ranks. Collective.
-void distribute(SolverState& s, Ranks& ranks);
+/// totals over the ranks. Collective. Throws rad::Error (on every rank) when the ranks' states
+/// differ: another `identity` (the solve's fingerprint) or another number of shots done.
+void distribute(SolverState& s, Ranks& ranks, uint64_t identity);
 
 /// Brings every polygon's mesh and unshot energy to rank 0, so its state is whole (as one
 /// process would have it); returns every rank's report there, in rank order (empty elsewhere).
@@ -41,7 +42,7 @@ std::vector<RankReport> collect(SolverState& s);
 /// Frees again, on rank 0, the polygons of other ranks that collect() brought.
 void release_foreign(SolverState& s);
 
-/// The counters of all ranks, as one process would have counted them.
+/// The counters of all ranks, as one process would have counted them (times: rank 0's).
 SolverStats total_stats(const std::vector<RankReport>& reports);
 double total_absorbed(const std::vector<RankReport>& reports);
 

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <functional>
 #include <string>
 
 #include "core/error.h"
@@ -48,6 +49,10 @@ class MpiRanks final : public Ranks {
     MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
     MPI_Comm_size(MPI_COMM_WORLD, &size_);
+    if (provided < MPI_THREAD_FUNNELED) {
+      MPI_Finalize();
+      throw Error("this MPI library cannot run rad's threads beside it (MPI_THREAD_FUNNELED)");
+    }
   }
   ~MpiRanks() override { MPI_Finalize(); }
 
@@ -93,9 +98,8 @@ class MpiRanks final : public Ranks {
     }
   }
 
-  std::vector<std::string> gather(std::string bytes) override {
+  void gather(std::string bytes, const std::function<void(int, std::string&)>& take) override {
     const Timer t(*this);
-    std::vector<std::string> all;
     if (rank_ != 0) {
       const uint64_t n = bytes.size();
       MPI_Send(&n, 1, MPI_UINT64_T, 0, 0, MPI_COMM_WORLD);
@@ -103,9 +107,10 @@ class MpiRanks final : public Ranks {
         MPI_Send(bytes.data() + at, int(std::min(kPiece, size_t(n) - at)), MPI_BYTE, 0, 1,
                  MPI_COMM_WORLD);
       }
-      return all;
+      return;
     }
-    all.push_back(std::move(bytes));
+    take(0, bytes);
+    std::string().swap(bytes);
     for (int r = 1; r < size_; ++r) {
       uint64_t n = 0;
       MPI_Recv(&n, 1, MPI_UINT64_T, r, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
@@ -114,9 +119,8 @@ class MpiRanks final : public Ranks {
         MPI_Recv(b.data() + at, int(std::min(kPiece, size_t(n) - at)), MPI_BYTE, r, 1,
                  MPI_COMM_WORLD, MPI_STATUS_IGNORE);
       }
-      all.push_back(std::move(b));
+      take(r, b);
     }
-    return all;
   }
 
   [[noreturn]] void abort(int code) override {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -26,8 +27,9 @@ class Ranks {
   virtual int64_t max(int64_t value) = 0;
   /// `bytes` of rank `root` on every rank.
   virtual void broadcast(std::string& bytes, int root) = 0;
-  /// Rank 0 gets every rank's `bytes` in rank order (its own first); the others get nothing.
-  virtual std::vector<std::string> gather(std::string bytes) = 0;
+  /// Rank 0 is handed every rank's `bytes` in rank order (its own first), one at a time, so it
+  /// can decode and free each before the next arrives; the others only send.
+  virtual void gather(std::string bytes, const std::function<void(int, std::string&)>& take) = 0;
   /// Ends every rank's process with `code` (an error on one rank must not leave the others
   /// waiting in a collective).
   [[noreturn]] virtual void abort(int code) = 0;

@@ -61,16 +61,21 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
     tbb::parallel_for(size_t(r.first), size_t(r.first) + r.count,
                       [&](size_t p) { received[p] = s.owns(p) && may_receive(s, p, src); });
   }
+  // The received polygons as a list: the passes below cost what the shot reaches, not the
+  // scene (a building's room light reaches a few rooms; under MPI a rank has half of them).
+  std::vector<uint32_t> receivers;
+  for (size_t p = 0; p < received.size(); ++p)
+    if (received[p]) receivers.push_back(uint32_t(p));
   // A shared vertex is skipped when the one that gathers for it is in a received polygon.
   auto copied = [&](size_t p, size_t v) {
     return shared.copies_gain(uint32_t(p), uint32_t(v)) &&
            received[shared.polygon[shared.canonical[shared.first[p] + v]]];
   };
   tbb::enumerable_thread_specific<GatherScratch> scratch;
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, tris.size(), 8), [&](const auto& range) {
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, receivers.size(), 8), [&](const auto& range) {
     const ScopedFlushDenormals ftz;  // once per range, not per ray batch (see denormals.h)
-    for (size_t p = range.begin(); p != range.end(); ++p) {
-      if (!received[p]) continue;
+    for (size_t i = range.begin(); i != range.end(); ++i) {
+      const size_t p = receivers[i];
       PolygonMesh& mesh = s.mesh.polygons[p];
       const Vec3 n = tris.normal[p], centroid = polygon_centroid(tris, p);
       const Vec3 rho = s.material_of(p).reflectance;
@@ -99,16 +104,21 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
     }
   });
   // The shared vertices take the gain of the one that gathered for them (same Pure: same rho).
-  tbb::parallel_for(size_t(0), shared.copies.size(), [&](size_t i) {
-    const uint32_t g = shared.copies[i], c = shared.canonical[g];
-    const uint32_t p = shared.polygon[g], q = shared.polygon[c];
-    if (!received[p] || !received[q]) return;
-    const Vec3 dh = s.mesh.polygons[q].vertices[c - shared.first[q]].shot;
-    MeshVertex& x = s.mesh.polygons[p].vertices[g - shared.first[p]];
-    x.irradiance += dh;
-    x.unshot += s.material_of(p).reflectance * dh;
-    x.shot = dh;
-    if (major) x.major += dh;
+  tbb::parallel_for(size_t(0), receivers.size(), [&](size_t i) {
+    const uint32_t p = receivers[i];
+    const uint32_t initial = shared.first[p + 1] - shared.first[p];
+    PolygonMesh& mesh = s.mesh.polygons[p];
+    const Vec3 rho = s.material_of(p).reflectance;
+    for (uint32_t v = 0; v < initial; ++v) {
+      if (!copied(p, v)) continue;
+      const uint32_t c = shared.canonical[shared.first[p] + v], q = shared.polygon[c];
+      const Vec3 dh = s.mesh.polygons[q].vertices[c - shared.first[q]].shot;
+      MeshVertex& x = mesh.vertices[v];
+      x.irradiance += dh;
+      x.unshot += rho * dh;
+      x.shot = dh;
+      if (major) x.major += dh;
+    }
   });
   for (const GatherScratch& sc : scratch) s.stats += sc.stats;
 }

@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <tuple>
@@ -12,22 +13,13 @@
 
 namespace rad {
 
-double cluster_unshot_energy(const SolverState& s, size_t c) {
-  double e = 0.0;
-  for (uint32_t j = s.clusters.first[c]; j < s.clusters.first[c + 1]; ++j)
-    e += std::abs(s.unshot_energy[s.clusters.polygons[j]]);
-  return e;
-}
-
 std::optional<Shooter> choose_shooter(const SolverState& s) {
   // Every shot changes the energy of nearly every cluster, so a heap would be rebuilt each time:
   // one parallel pass over the clusters' sums instead, then the largest (ties: lowest index).
   // Under MPI each rank looks at its own clusters, and one reduction picks among the ranks.
-  const size_t nc = s.clusters.size();
-  std::vector<double> energy(nc, 0.0);
-  tbb::parallel_for(size_t(0), nc, [&](size_t c) {
-    if (s.owns_cluster(c)) energy[c] = cluster_unshot_energy(s, c);
-  });
+  // cluster_energy is kept current shot by shot (0 for other ranks' clusters).
+  const std::vector<double>& energy = s.cluster_energy;
+  const size_t nc = energy.size();
   int32_t best = -1;
   double best_energy = 0.0;
   for (size_t c = 0; c < nc; ++c) {
@@ -59,10 +51,12 @@ ShotSource freeze_source(SolverState& s, size_t c, double energy) {
   if (s.options.overshoot) set_unshot(over, false);
   ShotSource src = make_shot_source(s, int32_t(c));
   set_unshot(-over, true);
+  std::vector<double> left;
   for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) {
-    const uint32_t p = k.polygons[j];
-    s.unshot_energy[p] = s.options.overshoot ? polygon_unshot_energy(s.mesh.polygons[p]) : 0.0;
+    left.push_back(s.options.overshoot ? polygon_unshot_energy(s.mesh.polygons[k.polygons[j]])
+                                       : 0.0);
   }
+  set_unshot_energies(s, {k.polygons.data() + k.first[c], left.size()}, left);
 
   src.major = s.options.major_shot_fraction > 0.0 &&
               energy >= s.options.major_shot_fraction * s.emitted_energy;
@@ -83,7 +77,7 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   if (s.owns_cluster(c)) src = freeze_source(s, c, shooter->energy);
   if (s.ranks) share_shot_source(s, src, s.cluster_owner[c]);
   const bool major = src.major;
-  std::vector<uint8_t> received;
+  std::vector<uint8_t>& received = s.received;
   shoot_to_receivers(s, src, vis, major, received);
   const auto t1 = std::chrono::steady_clock::now();
   refine_after_shot(s, src, vis, major, received);
@@ -91,10 +85,12 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
 
   // Bookkeeping per received polygon, summed in index order so the result does not depend on
   // the thread count.
-  const size_t np = received.size();
-  std::vector<double> absorbed(np, 0.0);
-  tbb::parallel_for(size_t(0), np, [&](size_t p) {
-    if (!received[p]) return;
+  std::vector<uint32_t> receivers;
+  for (size_t p = 0; p < received.size(); ++p)
+    if (received[p]) receivers.push_back(uint32_t(p));
+  std::vector<double> absorbed(receivers.size(), 0.0), unshot(receivers.size(), 0.0);
+  tbb::parallel_for(size_t(0), receivers.size(), [&](size_t i) {
+    const uint32_t p = receivers[i];
     const PolygonMesh& m = s.mesh.polygons[p];
     const Vec3 absorptance = Vec3(1.0f) - s.material_of(p).reflectance;
     double a = 0.0;
@@ -105,11 +101,13 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
                                          m.vertices[el.v[2]].shot)) /
            3.0;
     });
-    absorbed[p] = a;
-    s.unshot_energy[p] = polygon_unshot_energy(m);
+    absorbed[i] = a;
+    unshot[i] = polygon_unshot_energy(m);
   });
   for (double a : absorbed) s.absorbed_energy += a;
-  update_unshot_totals(s);
+  // The totals and the clusters' energies follow the polygons the shot changed, not the scene.
+  set_unshot_energies(s, receivers, unshot);
+  share_unshot_totals(s);
   const auto t2 = std::chrono::steady_clock::now();
   s.stats.shoot_seconds += std::chrono::duration<double>(t1 - t0).count();
   s.stats.refine_seconds += std::chrono::duration<double>(t2 - t1).count();

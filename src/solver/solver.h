@@ -11,9 +11,6 @@
 
 namespace rad {
 
-/// Unshot energy of cluster c: the sum of its polygons' absolute unshot energies.
-double cluster_unshot_energy(const SolverState& s, size_t c);
-
 struct Shooter {
   int32_t cluster;
   double energy;  // its unshot energy

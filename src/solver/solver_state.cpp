@@ -46,17 +46,38 @@ bool SolverState::owns_cluster(size_t c) const {
   return cluster_owner.empty() || cluster_owner[c] == uint32_t(ranks->rank());
 }
 
+namespace {
+// The fixed-point unit: 2^-64 of the emitted energy. A polygon's energy is clamped to 2^36
+// emitted energies (an edit may leave the emission near zero and the unshot energy not), so 2^26
+// polygons of them still sum within 128 bits.
+double fixed_scale(const SolverState& s) {
+  return std::ldexp(1.0, 64) / (s.emitted_energy > 0.0 ? s.emitted_energy : 1.0);
+}
+Fixed128 to_fixed(double e, double scale) {
+  const double most = std::ldexp(1.0, 100);
+  const double x = e * scale;
+  if (!(x == x)) return 0;  // NaN: counted as nothing rather than undefined
+  return Fixed128(std::nearbyint(std::clamp(x, -most, most)));
+}
+Fixed128 abs_fixed(Fixed128 v) { return v < 0 ? -v : v; }
+}  // namespace
+
+double cluster_unshot_energy(const SolverState& s, size_t c) {
+  double e = 0.0;
+  for (uint32_t j = s.clusters.first[c]; j < s.clusters.first[c + 1]; ++j)
+    e += std::abs(s.unshot_energy[s.clusters.polygons[j]]);
+  return e;
+}
+
 void update_unshot_totals(SolverState& s) {
-  const double scale = std::ldexp(1.0, 40) / (s.emitted_energy > 0.0 ? s.emitted_energy : 1.0);
-  const double most = std::ldexp(1.0, 52);  // 2^12 emitted energies: no sum of them overflows
-  auto fixed = [&](double e) { return int64_t(std::clamp(std::round(e * scale), -most, most)); };
-  using Sums = std::array<int64_t, 2>;
-  Sums t = tbb::parallel_reduce(
+  const double scale = fixed_scale(s);
+  using Sums = std::array<Fixed128, 2>;
+  const Sums t = tbb::parallel_reduce(
       tbb::blocked_range<size_t>(0, s.unshot_energy.size(), 4096), Sums{0, 0},
       [&](const auto& r, Sums acc) {
         for (size_t p = r.begin(); p != r.end(); ++p) {
-          const int64_t q = fixed(s.unshot_energy[p]);
-          acc[0] += q < 0 ? -q : q;
+          const Fixed128 q = to_fixed(s.unshot_energy[p], scale);
+          acc[0] += abs_fixed(q);
           acc[1] += q;
         }
         return acc;
@@ -64,9 +85,67 @@ void update_unshot_totals(SolverState& s) {
       [](Sums a, const Sums& b) {
         return Sums{a[0] + b[0], a[1] + b[1]};
       });
-  if (s.ranks) s.ranks->sum(t);
-  s.unshot_abs_total = double(t[0]) / scale;
-  s.unshot_signed_total = double(t[1]) / scale;
+  s.unshot_abs_fixed = t[0], s.unshot_signed_fixed = t[1];
+  s.cluster_energy.resize(s.clusters.size());
+  tbb::parallel_for(size_t(0), s.clusters.size(),
+                    [&](size_t c) { s.cluster_energy[c] = cluster_unshot_energy(s, c); });
+  share_unshot_totals(s);
+}
+
+void set_unshot_energies(SolverState& s, std::span<const uint32_t> polygons,
+                         std::span<const double> energies) {
+  assert(polygons.size() == energies.size());
+  const double scale = fixed_scale(s);
+  // Integer sums are exact, so the parallel reduction's order does not matter.
+  using Sums = std::array<Fixed128, 2>;
+  const Sums d = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, polygons.size(), 1024), Sums{0, 0},
+      [&](const auto& r, Sums acc) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+          const Fixed128 before = to_fixed(s.unshot_energy[polygons[i]], scale);
+          const Fixed128 after = to_fixed(energies[i], scale);
+          acc[0] += abs_fixed(after) - abs_fixed(before);
+          acc[1] += after - before;
+        }
+        return acc;
+      },
+      [](Sums a, const Sums& b) {
+        return Sums{a[0] + b[0], a[1] + b[1]};
+      });
+  s.unshot_abs_fixed += d[0], s.unshot_signed_fixed += d[1];
+  std::vector<uint32_t> clusters;
+  for (size_t i = 0; i < polygons.size(); ++i) {
+    s.unshot_energy[polygons[i]] = energies[i];
+    const uint32_t c = s.clusters.cluster_of[polygons[i]];
+    if (clusters.empty() || clusters.back() != c) clusters.push_back(c);  // most runs are long
+  }
+  std::sort(clusters.begin(), clusters.end());
+  clusters.erase(std::unique(clusters.begin(), clusters.end()), clusters.end());
+  tbb::parallel_for(size_t(0), clusters.size(), [&](size_t i) {
+    s.cluster_energy[clusters[i]] = cluster_unshot_energy(s, clusters[i]);
+  });
+}
+
+void share_unshot_totals(SolverState& s) {
+  Fixed128 sums[2] = {s.unshot_abs_fixed, s.unshot_signed_fixed};
+  if (s.ranks) {
+    // Each 128-bit sum as three limbs (the top one signed, two of 32 bits below), which any
+    // number of ranks add up in 64 bits without carries.
+    int64_t limbs[6];
+    for (int i = 0; i < 2; ++i) {
+      limbs[3 * i] = int64_t(sums[i] >> 64);
+      limbs[3 * i + 1] = int64_t((sums[i] >> 32) & 0xffffffff);
+      limbs[3 * i + 2] = int64_t(sums[i] & 0xffffffff);
+    }
+    s.ranks->sum(limbs);
+    for (int i = 0; i < 2; ++i) {
+      sums[i] = (Fixed128(limbs[3 * i]) << 64) + (Fixed128(limbs[3 * i + 1]) << 32) +
+                Fixed128(limbs[3 * i + 2]);
+    }
+  }
+  const double scale = fixed_scale(s);
+  s.unshot_abs_total = double(sums[0]) / scale;
+  s.unshot_signed_total = double(sums[1]) / scale;
 }
 
 SharedVertices find_shared_vertices(const Mesh& mesh, const Clusters& clusters) {

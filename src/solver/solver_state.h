@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "hierarchy/hierarchy.h"
@@ -52,6 +53,8 @@ struct SharedVertices {
 
 class Ranks;
 
+__extension__ typedef __int128 Fixed128;  // GCC's and clang's 128-bit integer
+
 struct SolverState {
   const Hierarchy* hierarchy = nullptr;
   SolverOptions options;
@@ -82,8 +85,13 @@ struct SolverState {
   SolverStats stats;
   std::vector<ShotRecord> history;
   /// Sums over the polygons (and the ranks) of |unshot_energy| and of unshot_energy, kept by
-  /// update_unshot_totals.
+  /// update_unshot_totals, set_unshot_energy and share_unshot_totals; the same two over this
+  /// rank's polygons in fixed point; per cluster, cluster_unshot_energy (0 for other ranks').
   double unshot_abs_total = 0.0, unshot_signed_total = 0.0;
+  Fixed128 unshot_abs_fixed = 0, unshot_signed_fixed = 0;
+  std::vector<double> cluster_energy;
+  /// Per polygon: may have gained from the last shot (scratch kept between shots).
+  std::vector<uint8_t> received;
   /// Under MPI (solver/distribute.h): the ranks solving together, the owner of each cluster and
   /// which polygons are this rank's. One process: null and empty, every polygon its own.
   Ranks* ranks = nullptr;
@@ -113,11 +121,24 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options);
 /// The initial mesh's vertices shared within planar clusters.
 SharedVertices find_shared_vertices(const Mesh& mesh, const Clusters& clusters);
 
-/// Sets the unshot totals from unshot_energy after it changed: summed in fixed point (2^-40 of
-/// the emitted energy), which is exact and so the same in any order and across any split of
-/// the polygons between ranks (summed over them too: collective under MPI). Floating-point sums
-/// would differ in their last bits, and the convergence test with them.
+/// Unshot energy of cluster c: the sum of its polygons' absolute unshot energies, in order.
+double cluster_unshot_energy(const SolverState& s, size_t c);
+
+/// Sets the unshot totals and every cluster's energy from unshot_energy after it changed. The
+/// totals are summed in fixed point (2^-64 of the emitted energy), which is exact and so the
+/// same in any order and across any split of the polygons between ranks (summed over them too:
+/// collective under MPI). Floating-point sums would differ in their last bits, and the
+/// convergence test with them.
 void update_unshot_totals(SolverState& s);
+
+/// Sets the unshot energy of `polygons` to `energies`, keeping this rank's fixed-point sums
+/// exact and the energy of their clusters current; then the caller calls share_unshot_totals.
+/// Parallel inside; costs what the polygons are, not the scene.
+void set_unshot_energies(SolverState& s, std::span<const uint32_t> polygons,
+                         std::span<const double> energies);
+
+/// The totals from this rank's fixed-point sums (summed over the ranks: collective under MPI).
+void share_unshot_totals(SolverState& s);
 
 /// Unshot energy of polygon p integrated over its leaf elements (mean over channels).
 double polygon_unshot_energy(const PolygonMesh& p);

@@ -79,6 +79,15 @@ failures() {
   grep -q "bad_number.des:4:27: error" <<<"$err" || fail "no located error: $err"
   grep -q "rad rank 0 of 2" <<<"$err" || fail "the error names no rank: $err"
   [ ! -e "$d/bad.ply" ] || fail "a bad scene wrote output"
+  # Ranks that read different scenes (a file that differs between nodes): an error, no hang.
+  cp "$scenes/cornell_box.des" "$d/scene0.des"
+  cp "$scenes/furnace_box.des" "$d/scene1.des"
+  timeout 120 mpirun -np 2 --oversubscribe bash -c \
+    "exec '$rad' '$d/scene'\$OMPI_COMM_WORLD_RANK.des '$d/differ.ply' -q" 2>"$d/differ.err" &&
+    fail "ranks with different scenes ran"
+  grep -q "the ranks do not hold the same solve" "$d/differ.err" ||
+    fail "different scenes: $(cat "$d/differ.err")"
+  [ ! -e "$d/differ.ply" ] || fail "ranks with different scenes wrote output"
   # Modes that do not split one scene are refused under several ranks.
   mpi 2 batch "$d/batch" "$scenes/cornell_box.des" -q 2>"$d/batch.err" && fail "batch ran"
   grep -q "shard" "$d/batch.err" || fail "batch refusal: $(cat "$d/batch.err")"
