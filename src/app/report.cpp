@@ -135,6 +135,7 @@ void write_stats_json(const std::string& path, const CommandLine& cmd, const std
                           {"broadcast_bytes", k.broadcast_bytes}});
     }
     j["mpi"] = {{"ranks", ranks.size()},
+                {"gather_seconds", t.gather},
                 {"shot_source_bytes_mean", broadcasts ? double(bytes) / double(broadcasts) : 0.0},
                 {"per_rank", per_rank}};
   }

@@ -16,6 +16,7 @@ namespace rad {
 /// Timings of the phases of one run, in seconds.
 struct RunTimes {
   double parse = 0, build = 0, solve = 0, write = 0, total = 0;
+  double gather = 0;  // MPI: rank 0 taking the ranks' polygons at the end (with the checkpoint)
 };
 
 /// The statistics block as the original printed it, plus rad's own counters.

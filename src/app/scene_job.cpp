@@ -177,6 +177,8 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job, Ranks*
         if (memory_limit > 0 && resident_bytes() > memory_limit) return StopReason::MemoryLimit;
         return std::nullopt;
       });
+  times.solve = since(t);
+  t = Clock::now();
   // Rank 0 takes every rank's polygons and counters (once: with a checkpoint, its save does
   // it): from here on its state is whole.
   std::vector<RankReport> reports;
@@ -187,7 +189,7 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job, Ranks*
     reports = save(true);
   }
   if (!lead) return {stop, state.shots, 0, state.unshot_fraction(), since(start)};
-  times.solve = since(t);
+  times.gather = ranks ? since(t) : 0.0;
   progress.finish(fmt::format("{} after {} shots", to_string(stop), state.shots));
   if (stop == StopReason::MemoryLimit) {
     say(fmt::format("Stopped at the memory limit ({}): writing the solution so far",
