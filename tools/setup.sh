@@ -1,6 +1,7 @@
-# Sourced by tools/run and tools/test: installs what is missing (Debian 12, as root), then
-# configures and builds into build/ (Release with debug info).
-set -euo pipefail
+# Sourced by tools/run, tools/test and the other tools: installs what is missing (Debian 12, as
+# root), then configures and builds into build/ (Release with debug info). Safe to source from
+# any shell: it sets no shell options (each script sets its own) and its functions return
+# non-zero on failure.
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 # RAD_SANITIZE (address,undefined or thread) builds an instrumented tree in its own folder.
 RAD_SANITIZE="${RAD_SANITIZE:-}"
@@ -23,7 +24,7 @@ rad_install_missing() {
   echo "Installing: ${missing[*]}"
   local sudo=""
   [ "$(id -u)" -ne 0 ] && sudo="sudo"
-  $sudo apt-get update -qq
+  $sudo apt-get update -qq || return
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 }
 
@@ -87,18 +88,19 @@ rad_tsan_deps() {
 }
 
 rad_build() {
-  rad_install_missing "${rad_packages[@]}"
+  rad_install_missing "${rad_packages[@]}" || return
   local extra=()
   if [[ "$RAD_SANITIZE" == *thread* ]]; then
     local deps
-    deps="$(rad_tsan_deps)"
+    deps="$(rad_tsan_deps)" || return
     extra=(-DCMAKE_PREFIX_PATH="$deps" -DTBB_DIR="$deps/lib/cmake/TBB"
       -Dembree_DIR="$(echo "$deps"/lib/cmake/embree-*)")
     export LD_LIBRARY_PATH="$deps/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
   fi
   # Configured every time (a second when nothing changed), so a changed option takes effect.
   cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DRAD_SANITIZE="$RAD_SANITIZE" ${RAD_SANITIZE:+-DRAD_BUILD_BENCH=OFF} "${extra[@]}" >/dev/null
+    -DRAD_SANITIZE="$RAD_SANITIZE" ${RAD_SANITIZE:+-DRAD_BUILD_BENCH=OFF} "${extra[@]}" >/dev/null ||
+    return
   cmake --build "$BUILD" -j "$(nproc)"
 }
 
@@ -116,10 +118,12 @@ rad_install_node_tools() {
 # (exact versions in tools/e2e/package.json) under build/web, where rad looks for them (web/
 # node_modules beside the rad executable), and Debian's Chromium for the end-to-end test. Not
 # fatal: rad serve says what is missing, and the browser test skips.
-rad_install_web() {
+rad_install_web() {  # [page]: the page's modules only, not the browser of its test
   rad_install_missing libcpp-httplib-dev || echo "warning: could not install libcpp-httplib-dev"
   command -v npm >/dev/null 2>&1 || rad_install_missing nodejs npm || true
-  [ -x /usr/bin/chromium ] || rad_install_missing chromium || echo "warning: could not install chromium"
+  if [ "${1:-}" != page ] && [ ! -x /usr/bin/chromium ]; then
+    rad_install_missing chromium || echo "warning: could not install chromium"
+  fi
   command -v npm >/dev/null 2>&1 || { echo "warning: npm missing: rad serve has no page"; return 0; }
   local web="$BUILD/web"
   if ! cmp -s "$ROOT/tools/e2e/package.json" "$web/package.json" ||
