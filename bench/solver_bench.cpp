@@ -182,9 +182,10 @@ std::unique_ptr<ShotCase> prepare_shot(SolverState s, const VisibilityBackend& v
   c->before = s;
   c->size_before = state_size(s);
   RecordingBackend recorder(vis);
-  shoot_to_receivers(s, c->src, recorder, c->major, c->received);
+  shoot_to_receivers(s, c->src, recorder, c->major);
+  c->received = s.received;
   c->after = s;
-  refine_after_shot(s, c->src, vis, c->major, c->received);
+  refine_after_shot(s, c->src, vis, c->major);
   c->size_refined = state_size(s);
   for (size_t p = 0; p < c->received.size(); ++p) {
     if (c->received[p]) c->receivers += c->after.mesh.polygons[p].vertex_count();
@@ -259,9 +260,8 @@ void bm_shot(benchmark::State& st, const SceneSpec& spec, bool later, Variant v,
   const VisibilityBackend& vis = sc.backend(v);
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
   SolverState s = c.before;
-  std::vector<uint8_t> received;
   const SolverStats start = s.stats;
-  for (auto _ : st) shoot_to_receivers(s, c.src, vis, c.major, received);
+  for (auto _ : st) shoot_to_receivers(s, c.src, vis, c.major);
   const double n = double(st.iterations());
   const double rays = double(s.stats.rays.rays - start.rays.rays);
   st.SetItemsProcessed(int64_t(st.iterations()) * int64_t(c.receivers));
@@ -317,7 +317,7 @@ void bm_refine(benchmark::State& st, const SceneSpec& spec, bool later, int thre
   for (auto _ : st) {
     SolverState s = c.after;
     const auto t0 = std::chrono::steady_clock::now();
-    refine_after_shot(s, c.src, vis, c.major, c.received);
+    refine_after_shot(s, c.src, vis, c.major);  // c.after holds the shot's receivers
     const auto t1 = std::chrono::steady_clock::now();
     st.SetIterationTime(std::chrono::duration<double>(t1 - t0).count());
     splits += double(s.stats.subdivisions - c.after.stats.subdivisions);

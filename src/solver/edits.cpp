@@ -35,8 +35,9 @@ void set_material(SolverState& s, int32_t object, const Material& m, const Visib
   }
   // Where the new radiosity varies beyond the limit (a surface that was black was never
   // subdivided), refine now, exactly.
-  std::vector<uint8_t> which(s.mesh.polygons.size(), 0);
-  for (uint32_t t = o.first_triangle; t < o.first_triangle + o.triangle_count; ++t) which[t] = 1;
+  std::vector<uint32_t> which;
+  for (uint32_t t = o.first_triangle; t < o.first_triangle + o.triangle_count; ++t)
+    which.push_back(t);
   refine_polygons(s, nullptr, false, d_rho, vis, which);
   for (uint32_t t = o.first_triangle; t < o.first_triangle + o.triangle_count; ++t) {
     s.unshot_energy[t] = polygon_unshot_energy(s.mesh.polygons[t]);

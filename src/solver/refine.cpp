@@ -35,19 +35,15 @@ Vec3 regather_shots(const SolverState& s, const Vec3& x, uint32_t polygon, bool 
 }
 
 void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,
-                       bool major, const std::vector<uint8_t>& received) {
-  refine_polygons(s, &src, major, Vec3(0.0f), vis, received);
+                       bool major) {
+  refine_polygons(s, &src, major, Vec3(0.0f), vis, s.receivers);
 }
 
 void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Vec3& d_rho,
-                     const VisibilityBackend& vis, const std::vector<uint8_t>& received) {
+                     const VisibilityBackend& vis, std::span<const uint32_t> polygons) {
   const Triangles& tris = s.hierarchy->triangles;
-  // Only the received polygons are looked at: a shot of a Lights list reaches a few rooms of a
+  // Only the given polygons are looked at: a shot of a Lights list reaches a few rooms of a
   // building, and per-polygon work over the whole scene would cost more than the shot.
-  std::vector<uint32_t> polygons;
-  for (size_t p = 0; p < received.size(); ++p) {
-    if (received[p]) polygons.push_back(uint32_t(p));
-  }
   const size_t np = polygons.size();
   const float limit = s.options.subdivision_threshold * s.radiosity_scale;
   const float min_split_edge = 2.0f * s.min_size;  // children must keep edges >= min_size

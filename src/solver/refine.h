@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "solver/gather.h"
@@ -30,11 +31,12 @@ Vec3 regather_shots(const SolverState& s, const Vec3& x, uint32_t polygon, bool 
 /// polygons' radiosity): every new vertex gathers every logged shot again, so H is exact, and
 /// its unshot radiosity takes the edit's part d_rho * H exactly.
 void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Vec3& d_rho,
-                     const VisibilityBackend& vis, const std::vector<uint8_t>& which);
+                     const VisibilityBackend& vis, std::span<const uint32_t> polygons);
 
 /// A new exact vertex also gathers every major shot of s.shot_log again, so only the minor shots'
 /// part is interpolated; `major` says whether the current shot is one.
+/// The polygons refined are the shot's receivers (s.receivers).
 void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,
-                       bool major, const std::vector<uint8_t>& received);
+                       bool major);
 
 }  // namespace rad

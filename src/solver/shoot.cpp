@@ -49,23 +49,29 @@ bool may_receive(const SolverState& s, size_t p, const ShotSource& src) {
 }
 
 void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,
-                        bool major, std::vector<uint8_t>& received) {
+                        bool major) {
   const Triangles& tris = s.hierarchy->triangles;
   const GatherSettings settings = gather_settings(s);
   const SharedVertices& shared = s.shared;
-  received.assign(tris.size(), 0);
+  // The mask is kept between shots and cleared where the last shot set it: a shot that reaches
+  // a few rooms of a building costs those rooms, not a pass over the whole scene.
+  std::vector<uint8_t>& received = s.received;
+  std::vector<uint32_t>& receivers = s.receivers;
+  if (received.size() != tris.size()) {
+    received.assign(tris.size(), 0);
+  } else {
+    for (uint32_t p : receivers) received[p] = 0;
+  }
+  receivers.clear();
   // With a Lights list only the triangles it names are looked at; under MPI, only this rank's.
   const int32_t influence = shooter_influence(s, src);
   const std::vector<TriangleRange> all{{0, uint32_t(tris.size())}};
   for (const TriangleRange& r : influence < 0 ? all : s.hierarchy->objects[size_t(influence)].lit) {
     tbb::parallel_for(size_t(r.first), size_t(r.first) + r.count,
                       [&](size_t p) { received[p] = s.owns(p) && may_receive(s, p, src); });
+    for (size_t p = r.first; p < size_t(r.first) + r.count; ++p)
+      if (received[p]) receivers.push_back(uint32_t(p));
   }
-  // The received polygons as a list: the passes below cost what the shot reaches, not the
-  // scene (a building's room light reaches a few rooms; under MPI a rank has half of them).
-  std::vector<uint32_t> receivers;
-  for (size_t p = 0; p < received.size(); ++p)
-    if (received[p]) receivers.push_back(uint32_t(p));
   // A shared vertex is skipped when the one that gathers for it is in a received polygon.
   auto copied = [&](size_t p, size_t v) {
     return shared.copies_gain(uint32_t(p), uint32_t(v)) &&

@@ -28,10 +28,11 @@ bool may_receive(const SolverState& s, size_t p, const ShotSource& src);
 
 /// Shoots `src` (whose unshot radiosity the caller has already cleared) to every vertex of every
 /// other polygon, in parallel over polygons and their vertices (TBB). Each vertex gets
-/// H += dH, unshot += rho * dH and shot = dH. received[p] is set to 1 for polygons that may have
-/// gained (the others' `shot` values are stale). Statistics are summed into s.stats.
-/// With `major`, dH is also added to each vertex's `major` part.
+/// H += dH, unshot += rho * dH and shot = dH. The polygons that may have gained are listed in
+/// s.receivers, in index order, and marked in s.received (the others' `shot` values are stale).
+/// Statistics are summed into s.stats. With `major`, dH is also added to each vertex's `major`
+/// part.
 void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,
-                        bool major, std::vector<uint8_t>& received);
+                        bool major);
 
 }  // namespace rad

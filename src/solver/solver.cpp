@@ -77,17 +77,14 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   if (s.owns_cluster(c)) src = freeze_source(s, c, shooter->energy);
   if (s.ranks) share_shot_source(s, src, s.cluster_owner[c]);
   const bool major = src.major;
-  std::vector<uint8_t>& received = s.received;
-  shoot_to_receivers(s, src, vis, major, received);
+  shoot_to_receivers(s, src, vis, major);
   const auto t1 = std::chrono::steady_clock::now();
-  refine_after_shot(s, src, vis, major, received);
+  refine_after_shot(s, src, vis, major);
   s.shot_log.push_back(std::move(src));
 
   // Bookkeeping per received polygon, summed in index order so the result does not depend on
   // the thread count.
-  std::vector<uint32_t> receivers;
-  for (size_t p = 0; p < received.size(); ++p)
-    if (received[p]) receivers.push_back(uint32_t(p));
+  const std::vector<uint32_t>& receivers = s.receivers;
   std::vector<double> absorbed(receivers.size(), 0.0), unshot(receivers.size(), 0.0);
   tbb::parallel_for(size_t(0), receivers.size(), [&](size_t i) {
     const uint32_t p = receivers[i];

@@ -90,8 +90,10 @@ struct SolverState {
   double unshot_abs_total = 0.0, unshot_signed_total = 0.0;
   Fixed128 unshot_abs_fixed = 0, unshot_signed_fixed = 0;
   std::vector<double> cluster_energy;
-  /// Per polygon: may have gained from the last shot (scratch kept between shots).
+  /// The polygons that may have gained from the last shot: a mask per polygon and their list
+  /// in index order (shoot_to_receivers; kept between shots so a small shot costs little).
   std::vector<uint8_t> received;
+  std::vector<uint32_t> receivers;
   /// Under MPI (solver/distribute.h): the ranks solving together, the owner of each cluster and
   /// which polygons are this rank's. One process: null and empty, every polygon its own.
   Ranks* ranks = nullptr;
