@@ -1,5 +1,6 @@
 #include "app/cli.h"
 
+#include <fmt/format.h>
 #include <tbb/info.h>
 
 #include <CLI/CLI.hpp>
@@ -12,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/memory.h"
+#include "export/image_render.h"
 #include "solver/ranks.h"
 
 namespace rad {
@@ -283,9 +285,10 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
     }
     char x = 0, end = 0;
     if (std::sscanf(size.c_str(), "%d%c%d%c", &c.image_width, &x, &c.image_height, &end) != 3 ||
-        x != 'x' || c.image_width < 1 || c.image_height < 1 || c.image_width > 16384 ||
-        c.image_height > 16384) {
-      throw CLI::ValidationError("--size", "expected WxH in pixels (1 to 16384), got " + size);
+        x != 'x' || c.image_width < 1 || c.image_height < 1 || c.image_width > kMaxImageSize ||
+        c.image_height > kMaxImageSize) {
+      throw CLI::ValidationError(
+          "--size", fmt::format("expected WxH in pixels (1 to {}), got {}", kMaxImageSize, size));
     }
     if (method == "analytic") {
       c.solver.method = FormFactorMethod::Analytic;

@@ -15,7 +15,6 @@ namespace rad {
 
 namespace {
 
-constexpr int kMaxSize = 16384;                  // pixels along either axis
 constexpr int kMaxSamples = 16;                  // subsamples per pixel along either axis
 constexpr int64_t kMaxCoord = int64_t(1) << 29;  // fixed-point coordinates stay below this
 constexpr float kGuard = 2.0f;  // faces are clipped to twice the view's half-extent
@@ -239,9 +238,9 @@ class Rasterizer {
 Image render_image(std::span<const Vec3> positions, std::span<const Vec3> colours,
                    std::span<const uint32_t> indices, const Camera& camera,
                    const RenderOptions& o) {
-  if (o.width < 1 || o.height < 1 || o.width > kMaxSize || o.height > kMaxSize) {
+  if (o.width < 1 || o.height < 1 || o.width > kMaxImageSize || o.height > kMaxImageSize) {
     throw Error("image size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
-                " is out of range (1 to " + std::to_string(kMaxSize) + " pixels a side)");
+                " is out of range (1 to " + std::to_string(kMaxImageSize) + " pixels a side)");
   }
   if (o.samples < 1 || o.samples > kMaxSamples) {
     throw Error("subsamples per pixel axis must be 1 to " + std::to_string(kMaxSamples));

@@ -8,6 +8,9 @@
 
 namespace rad {
 
+/// The largest image side, in pixels (the command line refuses more).
+constexpr int kMaxImageSize = 16384;
+
 struct RenderOptions {
   int width = 800, height = 800;  // pixels
   int samples = 4;                // subsamples per pixel along each axis (4: 16 per pixel)

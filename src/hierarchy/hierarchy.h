@@ -20,6 +20,9 @@ struct Triangles {
   std::vector<float> area;
   std::vector<int32_t> object;  // the Pure that owns the triangle
   size_t size() const { return corners.size(); }
+  Vec3 centroid(size_t i) const {
+    return (corners[i][0] + corners[i][1] + corners[i][2]) * (1.0f / 3.0f);
+  }
 };
 
 /// Triangles [first, first + count) of the depth-first table: one object and all below it.

@@ -135,11 +135,7 @@ std::shared_ptr<const Snapshot> Session::wait_for_snapshot(
   return snapshot_;
 }
 
-bool Session::finished() const {
-  const SolverOptions& o = state_.options;
-  return nothing_to_shoot_ || (o.max_shots >= 0 && state_.shots >= o.max_shots) ||
-         state_.unshot_fraction() <= o.converge;
-}
+bool Session::finished() const { return nothing_to_shoot_ || goal_reached(state_).has_value(); }
 
 void Session::run() {
   bool dirty = false;  // shots since the last snapshot

@@ -81,10 +81,6 @@ std::vector<std::array<int32_t, 3>> neighbours(const std::vector<std::array<uint
   return out;
 }
 
-Vec3 centroid_of(const Triangles& t, uint32_t i) {
-  return (t.corners[i][0] + t.corners[i][1] + t.corners[i][2]) * (1.0f / 3.0f);
-}
-
 // Edge-connected regions of one Pure grown breadth-first from the lowest unassigned triangle,
 // taking neighbours whose normal is within `cos_limit` of the seed's, over the triangles with
 // free[i] set. Regions in `out`, flat, with their starts.
@@ -126,11 +122,11 @@ void split_region(const Triangles& t, std::vector<uint32_t> tris, float max_exte
   const Vec3 e = box.extent();
   const int axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
   std::sort(tris.begin(), tris.end(), [&](uint32_t a, uint32_t b) {
-    const float ca = centroid_of(t, a)[axis], cb = centroid_of(t, b)[axis];
+    const float ca = t.centroid(a)[axis], cb = t.centroid(b)[axis];
     return ca < cb || (ca == cb && a < b);
   });
-  const float lo = centroid_of(t, tris.front())[axis], hi = centroid_of(t, tris.back())[axis];
-  const float median = centroid_of(t, tris[tris.size() / 2])[axis];
+  const float lo = t.centroid(tris.front())[axis], hi = t.centroid(tris.back())[axis];
+  const float median = t.centroid(tris[tris.size() / 2])[axis];
   float cut = median, best = std::numeric_limits<float>::infinity();
   for (uint32_t i : tris) {
     for (const Vec3& p : t.corners[i]) {
@@ -138,10 +134,9 @@ void split_region(const Triangles& t, std::vector<uint32_t> tris, float max_exte
       if (c > lo && c < hi && std::abs(c - median) < best) best = std::abs(c - median), cut = c;
     }
   }
-  size_t mid =
-      size_t(std::partition_point(tris.begin(), tris.end(),
-                                  [&](uint32_t i) { return centroid_of(t, i)[axis] < cut; }) -
-             tris.begin());
+  size_t mid = size_t(std::partition_point(tris.begin(), tris.end(),
+                                           [&](uint32_t i) { return t.centroid(i)[axis] < cut; }) -
+                      tris.begin());
   if (mid == 0 || mid == tris.size()) mid = tris.size() / 2;
   split_region(t, std::vector<uint32_t>(tris.begin(), tris.begin() + long(mid)), max_extent, parts);
   split_region(t, std::vector<uint32_t>(tris.begin() + long(mid), tris.end()), max_extent, parts);
@@ -301,7 +296,7 @@ Clusters make_clusters(const Hierarchy& h, float max_extent) {
         k.polygons.push_back(i);
         k.cluster_of[i] = c;
         area += double(t.area[i]);
-        centre += DVec3(centroid_of(t, i)) * double(t.area[i]);
+        centre += DVec3(t.centroid(i)) * double(t.area[i]);
         normal += DVec3(t.normal[i]) * double(t.area[i]);
         for (const Vec3& p : t.corners[i]) box.extend(p);
       }

@@ -21,7 +21,7 @@ Vec3 regather_shots(const SolverState& s, const Vec3& x, uint32_t polygon, bool 
                     const VisibilityBackend& vis, const GatherSettings& settings,
                     GatherScratch& scratch, Vec3* major_part) {
   const Triangles& tris = s.hierarchy->triangles;
-  const Vec3 n = tris.normal[polygon], centroid = polygon_centroid(tris, polygon);
+  const Vec3 n = tris.normal[polygon], centroid = tris.centroid(polygon);
   const GatherSettings own = receiver_settings(settings, s, polygon);
   Vec3 all(0.0f), major(0.0f);
   for (const ShotSource& k : s.shot_log) {
@@ -124,9 +124,9 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
           mid.shot = Vec3(0.0f);
           continue;
         }
-        const Vec3 dh = gather_from_source(mid.position, tris.normal[x.polygon],
-                                           polygon_centroid(tris, x.polygon), *src, vis,
-                                           receiver_settings(settings, s, x.polygon), sc);
+        const Vec3 dh =
+            gather_from_source(mid.position, tris.normal[x.polygon], tris.centroid(x.polygon), *src,
+                               vis, receiver_settings(settings, s, x.polygon), sc);
         Vec3 major_h(0.0f);
         regather_shots(s, mid.position, x.polygon, true, vis, settings, sc, &major_h);
         // Earlier minor shots: interpolated from the edge's ends (SPEC §5).

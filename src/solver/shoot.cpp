@@ -29,11 +29,6 @@ int32_t shooter_influence(const SolverState& s, const ShotSource& src) {
   return h.objects[size_t(h.triangles.object[p])].influence;
 }
 
-Vec3 polygon_centroid(const Triangles& t, size_t p) {
-  const auto& c = t.corners[p];
-  return (c[0] + c[1] + c[2]) * (1.0f / 3.0f);
-}
-
 bool may_receive(const SolverState& s, size_t p, const ShotSource& src) {
   if (src.planar && s.clusters.cluster_of[p] == uint32_t(src.cluster)) return false;
   if (!influence_reaches(*s.hierarchy, shooter_influence(s, src), uint32_t(p))) return false;
@@ -83,7 +78,7 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
     for (size_t i = range.begin(); i != range.end(); ++i) {
       const size_t p = receivers[i];
       PolygonMesh& mesh = s.mesh.polygons[p];
-      const Vec3 n = tris.normal[p], centroid = polygon_centroid(tris, p);
+      const Vec3 n = tris.normal[p], centroid = tris.centroid(p);
       const Vec3 rho = s.material_of(p).reflectance;
       const GatherSettings own = receiver_settings(settings, s, p);
       auto body = [&](size_t v0, size_t v1) {

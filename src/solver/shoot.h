@@ -18,9 +18,6 @@ GatherSettings receiver_settings(const GatherSettings& g, const SolverState& s, 
 /// SceneObject::influence of the Pure that shoots `src`: -1 when it lights everything.
 int32_t shooter_influence(const SolverState& s, const ShotSource& src);
 
-/// Centroid of polygon p.
-Vec3 polygon_centroid(const Triangles& t, size_t p);
-
 /// False when no point of polygon p can gain from `src`: p belongs to the planar cluster that
 /// shoots, or is not on its Lights list, or lies behind all of it, or all of it lies behind p's
 /// plane.

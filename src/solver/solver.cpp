@@ -134,14 +134,19 @@ const char* to_string(StopReason r) {
   return "?";
 }
 
+std::optional<StopReason> goal_reached(const SolverState& s) {
+  if (s.unshot_fraction() <= s.options.converge) return StopReason::Converged;
+  if (s.options.max_shots >= 0 && s.shots >= s.options.max_shots) return StopReason::MaxShots;
+  return std::nullopt;
+}
+
 StopReason solve(SolverState& s, const VisibilityBackend& vis,
                  const std::function<void(const SolverState&, const ShotRecord&)>& on_shot,
                  const std::function<std::optional<StopReason>()>& stop) {
   const auto start = std::chrono::steady_clock::now();
   const SolverOptions& o = s.options;
   for (;;) {
-    if (s.unshot_fraction() <= o.converge) return StopReason::Converged;
-    if (o.max_shots >= 0 && s.shots >= o.max_shots) return StopReason::MaxShots;
+    if (const std::optional<StopReason> goal = goal_reached(s)) return *goal;
     std::optional<StopReason> why = stop ? stop() : std::nullopt;
     if (!why && o.time_limit > 0.0 &&
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >=

@@ -30,6 +30,10 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis);
 enum class StopReason { Converged, MaxShots, TimeLimit, NothingToShoot, Interrupted, MemoryLimit };
 const char* to_string(StopReason r);
 
+/// The stop criteria that depend on the state alone (no clock, no signal): converged (unshot <=
+/// converge x emitted), or the shot limit reached. What solve() and rad serve's session stop on.
+std::optional<StopReason> goal_reached(const SolverState& s);
+
 /// Steps until unshot <= converge x emitted, or max shots, or the time limit, or `stop` (if
 /// set, polled before every shot) gives a reason (a signal, the memory limit). `on_shot` (if
 /// set) is called after every shot, between steps, where the state may be read. The time limit

@@ -32,8 +32,8 @@ struct CornerScene {
   // Gain at floor point x from the wall.
   float gain(Vec3 x, GatherSettings g) {
     GatherScratch sc;
-    return gather_from_source(x, {0, 0, 1}, polygon_centroid(h.triangles, 1),
-                              make_shot_source(s, wall()), *vis, g, sc)
+    return gather_from_source(x, {0, 0, 1}, h.triangles.centroid(1), make_shot_source(s, wall()),
+                              *vis, g, sc)
         .x;
   }
 };
