@@ -37,7 +37,9 @@ std::string statements_rad_reads(std::string_view obj) {
   std::string out;
   out.reserve(obj.size());
   for (size_t at = 0; at < obj.size();) {
-    size_t end = obj.find('\n', at);
+    // tinyobjloader ends a line at '\r' too (a lone one included): so must the filter, or a
+    // statement after a '\r' would ride through on a kept line (fuzzing found a `vw` so).
+    size_t end = obj.find_first_of("\r\n", at);
     if (end == std::string_view::npos) end = obj.size();
     const std::string_view line = obj.substr(at, end - at);
     size_t k = 0;
@@ -52,7 +54,7 @@ std::string statements_rad_reads(std::string_view obj) {
       }
     }
     out.push_back('\n');
-    at = end + 1;
+    at = end + (obj.substr(end, 2) == "\r\n" ? 2 : 1);  // one line end, as tinyobjloader counts
   }
   return out;
 }

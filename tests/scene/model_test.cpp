@@ -137,6 +137,25 @@ TEST_F(ModelFiles, BadObjFilesEndInOneError) {
   }
 }
 
+TEST_F(ModelFiles, ObjLinesEndAtAnyLineEndAsTinyobjloaderReadsThem) {
+  // LF, CRLF and lone CR files give the same triangle; a statement rad drops (a skin weight
+  // with a joint id beyond int, undefined behaviour in tinyobjloader) is dropped after a CR too.
+  for (const char* end : {"\n", "\r\n", "\r"}) {
+    const std::string e = end;
+    const std::string obj =
+        "v 0 0 0" + e + "v 1 0 0" + e + "v 0 1 0 " + "\rvw 1 5e17 1" + e + "f 1 2 3" + e;
+    const Model m = parse_obj_text(obj, "", "endings.obj");
+    EXPECT_EQ(m.triangle_count(), 1u) << int(end[0]);
+  }
+  // An error's line counts a CRLF as one line end.
+  try {
+    parse_obj_text("v 0 0 0\r\nv 1 0 0\r\nf 1 2 7\r\n", "", "crlf.obj");
+    FAIL() << "an index beyond the vertices was read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("crlf.obj"), std::string::npos) << e.what();
+  }
+}
+
 std::string ply_header(const char* format, int vertices, int faces) {
   return std::string("ply\nformat ") + format + " 1.0\ncomment a square\nelement vertex " +
          std::to_string(vertices) +
