@@ -174,11 +174,15 @@ std::unique_ptr<ShotCase> prepare_shot(SolverState s, const VisibilityBackend& v
   if (!shooter) return nullptr;
   c->index = s.shots + 1;
   c->src = make_shot_source(s, shooter->cluster);
-  for (MeshVertex& v : s.mesh.polygons[size_t(shooter->cluster)].vertices) v.unshot = Vec3(0.0f);
-  c->major =
-      s.options.major_shot_fraction > 0.0 && std::abs(s.unshot_energy[size_t(shooter->cluster)]) >=
-                                                 s.options.major_shot_fraction * s.emitted_energy;
-  s.unshot_energy[size_t(shooter->cluster)] = 0.0;
+  const Clusters& k = s.clusters;
+  const std::span<const uint32_t> own(k.polygons.data() + k.first[size_t(shooter->cluster)],
+                                      k.polygon_count(size_t(shooter->cluster)));
+  for (uint32_t p : own)
+    for (MeshVertex& v : s.mesh.polygons[p].vertices) v.unshot = Vec3(0.0f);
+  c->major = s.options.major_shot_fraction > 0.0 &&
+             shooter->energy >= s.options.major_shot_fraction * s.emitted_energy;
+  set_unshot_energies(s, own, std::vector<double>(own.size(), 0.0));
+  share_unshot_totals(s);
   c->before = s;
   c->size_before = state_size(s);
   RecordingBackend recorder(vis);

@@ -14,10 +14,10 @@
 namespace rad {
 
 std::optional<Shooter> choose_shooter(const SolverState& s) {
-  // Every shot changes the energy of nearly every cluster, so a heap would be rebuilt each time:
-  // one parallel pass over the clusters' sums instead, then the largest (ties: lowest index).
-  // Under MPI each rank looks at its own clusters, and one reduction picks among the ranks.
-  // cluster_energy is kept current shot by shot (0 for other ranks' clusters).
+  // The largest of the clusters' energies, kept current shot by shot for the clusters a shot
+  // changed (ties: the lowest index). A shot without Lights lists changes nearly every cluster,
+  // so a heap would be rebuilt each time; one pass over a double a cluster costs less. Under MPI
+  // each rank looks at its own clusters (the others' are 0), and one reduction picks among them.
   const std::vector<double>& energy = s.cluster_energy;
   const size_t nc = energy.size();
   int32_t best = -1;

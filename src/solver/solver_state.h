@@ -85,7 +85,7 @@ struct SolverState {
   SolverStats stats;
   std::vector<ShotRecord> history;
   /// Sums over the polygons (and the ranks) of |unshot_energy| and of unshot_energy, kept by
-  /// update_unshot_totals, set_unshot_energy and share_unshot_totals; the same two over this
+  /// update_unshot_totals, set_unshot_energies and share_unshot_totals; the same two over this
   /// rank's polygons in fixed point; per cluster, cluster_unshot_energy (0 for other ranks').
   double unshot_abs_total = 0.0, unshot_signed_total = 0.0;
   Fixed128 unshot_abs_fixed = 0, unshot_signed_fixed = 0;
