@@ -200,6 +200,7 @@ PlyData parse_ply_data(std::string_view bytes, const std::string& path) {
 
   PlyData out;
   Body in(bytes, body, *format, path, number + 1);
+  bool seen_vertex = false, seen_face = false;
   for (const Element& e : elements) {
     // Each item takes at least one byte (binary) or two characters (ASCII) per property.
     const size_t least =
@@ -209,6 +210,11 @@ PlyData parse_ply_data(std::string_view bytes, const std::string& path) {
               " items, more than the file holds");
     }
     const bool is_vertex = e.name == "vertex", is_face = e.name == "face";
+    // One element of each: a second "vertex" element would leave the columns of the first
+    // shorter than the count the faces are checked against (fuzzing found it).
+    if ((is_vertex && seen_vertex) || (is_face && seen_face))
+      in.fail("a second '" + e.name + "' element");
+    seen_vertex |= is_vertex, seen_face |= is_face;
     std::vector<std::vector<float>*> columns;
     for (const Property& prop : e.properties) {
       columns.push_back(is_vertex && !prop.list ? &out.vertex[prop.name] : nullptr);
@@ -259,6 +265,10 @@ Model parse_ply(std::string_view bytes, const std::string& path) {
   const PlyData d = parse_ply_data(bytes, path);
   const std::vector<float>&x = d.column("x", path), &y = d.column("y", path),
         &z = d.column("z", path);
+  for (const std::vector<float>* c : {&x, &y, &z}) {
+    if (c->size() != d.vertex_count)
+      throw Error(SourceLoc{path}, "the vertices' x, y and z are not one each per vertex");
+  }
   const auto corner = [&](uint32_t i) { return Vec3(x[i], y[i], z[i]); };
   Model m;
   m.path = path;
