@@ -60,6 +60,25 @@ Fixed128 to_fixed(double e, double scale) {
   return Fixed128(std::nearbyint(std::clamp(x, -most, most)));
 }
 Fixed128 abs_fixed(Fixed128 v) { return v < 0 ? -v : v; }
+
+// The sums of the absolute and the signed values term(i) gives for i < n. Integer sums are
+// exact, so the parallel reduction's order does not matter.
+using FixedSums = std::array<Fixed128, 2>;
+template <typename Term>
+FixedSums sum_fixed(size_t n, const Term& term) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, n, 1024), FixedSums{0, 0},
+      [&](const auto& r, FixedSums acc) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+          const FixedSums t = term(i);
+          acc[0] += t[0], acc[1] += t[1];
+        }
+        return acc;
+      },
+      [](FixedSums a, const FixedSums& b) {
+        return FixedSums{a[0] + b[0], a[1] + b[1]};
+      });
+}
 }  // namespace
 
 double cluster_unshot_energy(const SolverState& s, size_t c) {
@@ -71,20 +90,10 @@ double cluster_unshot_energy(const SolverState& s, size_t c) {
 
 void update_unshot_totals(SolverState& s) {
   const double scale = fixed_scale(s);
-  using Sums = std::array<Fixed128, 2>;
-  const Sums t = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, s.unshot_energy.size(), 4096), Sums{0, 0},
-      [&](const auto& r, Sums acc) {
-        for (size_t p = r.begin(); p != r.end(); ++p) {
-          const Fixed128 q = to_fixed(s.unshot_energy[p], scale);
-          acc[0] += abs_fixed(q);
-          acc[1] += q;
-        }
-        return acc;
-      },
-      [](Sums a, const Sums& b) {
-        return Sums{a[0] + b[0], a[1] + b[1]};
-      });
+  const FixedSums t = sum_fixed(s.unshot_energy.size(), [&](size_t p) {
+    const Fixed128 q = to_fixed(s.unshot_energy[p], scale);
+    return FixedSums{abs_fixed(q), q};
+  });
   s.unshot_abs_fixed = t[0], s.unshot_signed_fixed = t[1];
   s.cluster_energy.resize(s.clusters.size());
   tbb::parallel_for(size_t(0), s.clusters.size(),
@@ -96,22 +105,11 @@ void set_unshot_energies(SolverState& s, std::span<const uint32_t> polygons,
                          std::span<const double> energies) {
   assert(polygons.size() == energies.size());
   const double scale = fixed_scale(s);
-  // Integer sums are exact, so the parallel reduction's order does not matter.
-  using Sums = std::array<Fixed128, 2>;
-  const Sums d = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, polygons.size(), 1024), Sums{0, 0},
-      [&](const auto& r, Sums acc) {
-        for (size_t i = r.begin(); i != r.end(); ++i) {
-          const Fixed128 before = to_fixed(s.unshot_energy[polygons[i]], scale);
-          const Fixed128 after = to_fixed(energies[i], scale);
-          acc[0] += abs_fixed(after) - abs_fixed(before);
-          acc[1] += after - before;
-        }
-        return acc;
-      },
-      [](Sums a, const Sums& b) {
-        return Sums{a[0] + b[0], a[1] + b[1]};
-      });
+  const FixedSums d = sum_fixed(polygons.size(), [&](size_t i) {
+    const Fixed128 before = to_fixed(s.unshot_energy[polygons[i]], scale);
+    const Fixed128 after = to_fixed(energies[i], scale);
+    return FixedSums{abs_fixed(after) - abs_fixed(before), after - before};
+  });
   s.unshot_abs_fixed += d[0], s.unshot_signed_fixed += d[1];
   std::vector<uint32_t> clusters;
   for (size_t i = 0; i < polygons.size(); ++i) {
