@@ -204,7 +204,7 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job, Ranks*
   const OutputMesh mesh = make_output_mesh(state, cmd.ambient);
   MeshFileOptions mo;
   mo.ascii = cmd.ascii;
-  mo.tone = scene_tone_map(state, mesh, cmd.tonemap, cmd.exposure);
+  mo.tone = scene_tone_map(state, mesh.display, cmd.tonemap, cmd.exposure);
   if (!job.mesh_output.empty()) {
     say(fmt::format("Writing results in file {}", job.mesh_output));
     write_mesh_file(job.mesh_output, mesh, mo);
@@ -212,9 +212,9 @@ SceneJobResult run_scene_job(const CommandLine& cmd, const SceneJob& job, Ranks*
   if (!job.images.empty()) {
     const RenderOptions ro{cmd.image_width, cmd.image_height};
     const Camera camera = cmd.camera ? *cmd.camera
-                                     : default_camera(mesh.position, mesh.indices,
+                                     : default_camera(mesh.position(), mesh.indices(),
                                                       float(ro.width) / float(ro.height));
-    const Image image = render_image(mesh.position, mesh.display, mesh.indices, camera, ro);
+    const Image image = render_image(mesh.position(), mesh.display, mesh.indices(), camera, ro);
     for (const std::string& path : job.images) {
       say(fmt::format("Writing image {}", path));
       write_image_file(path, image, mo.tone);

@@ -9,6 +9,7 @@ namespace rad {
 /// The tone map for the mesh's display colours: automatic exposure (auto_exposure) over the
 /// display values, ignoring those brighter than half the brightest emission (the light sources)
 /// unless that leaves none, plus `stops`, followed by `curve`.
-ToneMap scene_tone_map(const SolverState& s, const OutputMesh& mesh, ToneCurve curve, float stops);
+ToneMap scene_tone_map(const SolverState& s, const std::vector<Vec3>& display, ToneCurve curve,
+                       float stops);
 
 }  // namespace rad

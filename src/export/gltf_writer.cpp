@@ -128,16 +128,16 @@ void write_scene_gltf(std::ostream& out, const Hierarchy& h, bool binary) {
 
 void write_gltf(std::ostream& out, const OutputMesh& mesh, const ToneMap& tm, bool binary) {
   tinygltf::Model m = empty_model();
-  if (!mesh.indices.empty()) {
+  if (!mesh.indices().empty()) {
     std::vector<Vec3> colour(mesh.display.size());
     for (size_t v = 0; v < colour.size(); ++v) colour[v] = tone_map(mesh.display[v], tm);
 
     tinygltf::Primitive prim;
     prim.mode = TINYGLTF_MODE_TRIANGLES;
-    prim.attributes["POSITION"] = add_vec3(m, mesh.position, true);
+    prim.attributes["POSITION"] = add_vec3(m, mesh.position(), true);
     prim.attributes["COLOR_0"] = add_vec3(m, colour, false);
     prim.attributes["_RADIOSITY"] = add_vec3(m, mesh.radiosity, false);
-    prim.indices = add_indices(m, mesh.indices);
+    prim.indices = add_indices(m, mesh.indices());
 
     tinygltf::Material mat;
     mat.name = "radiosity (unlit vertex colours)";

@@ -1,34 +1,80 @@
 #include "export/output_mesh.h"
 
-#include "mesh/output_faces.h"
-
 namespace rad {
 
-OutputMesh make_output_mesh(const SolverState& s, bool ambient) {
-  OutputMesh out;
-  const Vec3 amb = ambient ? ambient_radiosity(s) : Vec3(0.0f);
-  for (size_t p = 0; p < s.mesh.polygons.size(); ++p) {
-    const PolygonMesh& m = s.mesh.polygons[p];
-    const Material& mat = s.material_of(p);
-    const PolygonFaces f = triangulate_leaves(m);
-    const uint32_t base = uint32_t(out.position.size());
-    for (uint32_t v = 0; v < m.vertex_count(); ++v) {
-      out.position.push_back(m.vertices[v].position);
-      out.radiosity.push_back(s.radiosity(p, v));
-    }
-    for (const auto& c : f.centroids) {
-      out.position.push_back(
-          (m.vertices[c[0]].position + m.vertices[c[1]].position + m.vertices[c[2]].position) /
-          3.0f);
-      out.radiosity.push_back((s.radiosity(p, c[0]) + s.radiosity(p, c[1]) + s.radiosity(p, c[2])) /
-                              3.0f);
-    }
-    for (size_t v = base; v < out.position.size(); ++v) {
-      out.display.push_back(out.radiosity[v] + mat.reflectance * amb);
-    }
-    for (uint32_t i : f.triangles) out.indices.push_back(base + i);
-    out.face_polygon.insert(out.face_polygon.end(), f.triangles.size() / 3, int32_t(p));
+std::shared_ptr<const MeshGeometry> OutputMeshBuilder::update(const SolverState& s, bool* changed) {
+  const std::vector<PolygonMesh>& polys = s.mesh.polygons;
+  bool any = !geometry_ || polygons_.size() != polys.size();
+  polygons_.resize(polys.size());
+  for (size_t p = 0; p < polys.size(); ++p) {
+    Polygon& c = polygons_[p];
+    // Elements are only ever added (split into four), so unchanged counts mean unchanged faces.
+    if (c.vertices == polys[p].vertex_count() && c.elements == polys[p].elements.size()) continue;
+    c.vertices = polys[p].vertex_count();
+    c.elements = polys[p].elements.size();
+    c.faces = triangulate_leaves(polys[p]);
+    any = true;
   }
+  *changed = any;
+  if (!any) return geometry_;
+  auto g = std::make_shared<MeshGeometry>();
+  size_t nv = 0, ni = 0;
+  for (const Polygon& c : polygons_) {
+    nv += c.vertices + c.faces.centroids.size();
+    ni += c.faces.triangles.size();
+  }
+  g->position.reserve(nv);
+  g->indices.reserve(ni);
+  g->face_polygon.reserve(ni / 3);
+  for (size_t p = 0; p < polys.size(); ++p) {
+    const PolygonMesh& m = polys[p];
+    const PolygonFaces& f = polygons_[p].faces;
+    const uint32_t base = uint32_t(g->position.size());
+    for (const MeshVertex& v : m.vertices) g->position.push_back(v.position);
+    for (const auto& k : f.centroids) {
+      g->position.push_back(
+          (m.vertices[k[0]].position + m.vertices[k[1]].position + m.vertices[k[2]].position) /
+          3.0f);
+    }
+    for (uint32_t i : f.triangles) g->indices.push_back(base + i);
+    g->face_polygon.insert(g->face_polygon.end(), f.triangles.size() / 3, int32_t(p));
+  }
+  geometry_ = std::move(g);
+  return geometry_;
+}
+
+void OutputMeshBuilder::values(const SolverState& s, Vec3 ambient, std::vector<Vec3>& radiosity,
+                               std::vector<Vec3>& display) const {
+  radiosity.clear();
+  display.clear();
+  if (geometry_) radiosity.reserve(geometry_->position.size());
+  if (geometry_) display.reserve(geometry_->position.size());
+  for (size_t p = 0; p < polygons_.size(); ++p) {
+    const size_t first = radiosity.size();
+    const uint32_t n = uint32_t(polygons_[p].vertices);
+    for (uint32_t v = 0; v < n; ++v) radiosity.push_back(s.radiosity(p, v));
+    for (const auto& k : polygons_[p].faces.centroids) {
+      radiosity.push_back((s.radiosity(p, k[0]) + s.radiosity(p, k[1]) + s.radiosity(p, k[2])) /
+                          3.0f);
+    }
+    const Material& mat = s.material_of(p);
+    for (size_t v = first; v < radiosity.size(); ++v) {
+      display.push_back(radiosity[v] + mat.reflectance * ambient);
+    }
+  }
+}
+
+void OutputMeshBuilder::reset() {
+  polygons_.clear();
+  geometry_.reset();
+}
+
+OutputMesh make_output_mesh(const SolverState& s, bool ambient) {
+  OutputMeshBuilder builder;
+  OutputMesh out;
+  bool changed = false;
+  out.geometry = builder.update(s, &changed);
+  builder.values(s, ambient ? ambient_radiosity(s) : Vec3(0.0f), out.radiosity, out.display);
   return out;
 }
 

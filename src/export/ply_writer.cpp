@@ -21,17 +21,17 @@ void write_ply(std::ostream& out, const OutputMesh& m, const ToneMap& tm, bool a
   out << "ply\n"
       << (ascii ? "format ascii 1.0\n" : "format binary_little_endian 1.0\n")
       << "comment rad radiosity: rgb = display colour (sRGB), radiosity_* = linear radiosity\n"
-      << "element vertex " << m.position.size() << "\n"
+      << "element vertex " << m.position().size() << "\n"
       << "property float x\nproperty float y\nproperty float z\n"
       << "property uchar red\nproperty uchar green\nproperty uchar blue\n"
       << "property float radiosity_r\nproperty float radiosity_g\nproperty float radiosity_b\n"
       << "element face " << m.face_count() << "\n"
       << "property list uchar uint vertex_indices\n"
       << "end_header\n";
-  for (size_t v = 0; v < m.position.size(); ++v) {
+  for (size_t v = 0; v < m.position().size(); ++v) {
     uint8_t c[3];
     to_srgb8(m.display[v], tm, c);
-    const Vec3 &p = m.position[v], &b = m.radiosity[v];
+    const Vec3 &p = m.position()[v], &b = m.radiosity[v];
     if (ascii) {
       out << fmt::format("{} {} {} {} {} {} {} {} {}\n", p.x, p.y, p.z, c[0], c[1], c[2], b.x, b.y,
                          b.z);
@@ -42,7 +42,7 @@ void write_ply(std::ostream& out, const OutputMesh& m, const ToneMap& tm, bool a
     }
   }
   for (size_t f = 0; f < m.face_count(); ++f) {
-    const uint32_t* i = &m.indices[3 * f];
+    const uint32_t* i = &m.indices()[3 * f];
     if (ascii) {
       out << fmt::format("3 {} {} {}\n", i[0], i[1], i[2]);
     } else {

@@ -14,7 +14,7 @@ std::vector<std::pair<float, Vec3>> on_edge(const OutputMesh& m, const std::vect
   const Vec3 d = b - a;
   const float len2 = glm::dot(d, d);
   for (uint32_t v : verts) {
-    const Vec3 q = m.position[v] - a;
+    const Vec3 q = m.position()[v] - a;
     const float t = glm::dot(q, d) / len2;
     if (t < -1e-5f || t > 1.0f + 1e-5f) continue;
     if (glm::length(q - d * t) > 1e-5f * std::sqrt(len2)) continue;
@@ -41,7 +41,8 @@ SeamReport measure_seams(const OutputMesh& m, const Triangles& tris) {
   // Vertices of each polygon, from its faces.
   std::vector<std::vector<uint32_t>> verts(tris.size());
   for (size_t f = 0; f < m.face_count(); ++f) {
-    for (int k = 0; k < 3; ++k) verts[size_t(m.face_polygon[f])].push_back(m.indices[3 * f + k]);
+    for (int k = 0; k < 3; ++k)
+      verts[size_t(m.face_polygon()[f])].push_back(m.indices()[3 * f + k]);
   }
   for (auto& v : verts) {
     std::sort(v.begin(), v.end());

@@ -21,7 +21,7 @@ std::string header(uint32_t magic, const Snapshot& s, size_t indices) {
   const uint32_t h[8] = {magic,
                          uint32_t(s.version),
                          uint32_t(s.mesh_version),
-                         uint32_t(s.geometry->position.size()),
+                         uint32_t(s.mesh.position().size()),
                          uint32_t(indices),
                          0,
                          0,
@@ -85,8 +85,8 @@ std::string status_json(const Hierarchy& h, const Snapshot& s) {
       {"seconds", s.seconds},
       {"snapshot_ms", 1e3 * s.build_seconds},
       {"elements", s.elements},
-      {"vertices", s.geometry->position.size()},
-      {"faces", s.geometry->indices.size() / 3},
+      {"vertices", s.mesh.position().size()},
+      {"faces", s.mesh.face_count()},
       {"exposure",
        {{"scale", s.tone.scale}, {"stops", s.exposure_stops}, {"locked", s.exposure_locked}}},
       {"objects", objects},
@@ -96,7 +96,7 @@ std::string status_json(const Hierarchy& h, const Snapshot& s) {
 }
 
 std::string mesh_buffer(const Snapshot& s) {
-  const SnapshotGeometry& g = *s.geometry;
+  const MeshGeometry& g = *s.mesh.geometry;
   std::string out = header(kMeshMagic, s, g.indices.size());
   out.reserve(out.size() + g.position.size() * 24 + g.indices.size() * 4 +
               g.face_polygon.size() * 4);

@@ -62,7 +62,7 @@ int run_serve(const ServeConfig& c) {
   say(fmt::format("{} shots, unshot fraction {:.3e}, {} elements", snap->shots,
                   snap->unshot_fraction, snap->elements));
   if (c.output.empty() && c.images.empty()) return 0;
-  const OutputMesh mesh = snap->output_mesh();
+  const OutputMesh& mesh = snap->mesh;
   if (!c.output.empty()) {
     say(fmt::format("Writing results in file {}", c.output));
     MeshFileOptions mo;
@@ -72,10 +72,10 @@ int run_serve(const ServeConfig& c) {
   }
   if (!c.images.empty()) {
     const RenderOptions ro{c.image_width, c.image_height};
-    const Camera camera =
-        c.camera ? *c.camera
-                 : default_camera(mesh.position, mesh.indices, float(ro.width) / float(ro.height));
-    const Image image = render_image(mesh.position, mesh.display, mesh.indices, camera, ro);
+    const Camera camera = c.camera ? *c.camera
+                                   : default_camera(mesh.position(), mesh.indices(),
+                                                    float(ro.width) / float(ro.height));
+    const Image image = render_image(mesh.position(), mesh.display, mesh.indices(), camera, ro);
     for (const std::string& path : c.images) {
       say(fmt::format("Writing image {}", path));
       write_image_file(path, image, snap->tone);

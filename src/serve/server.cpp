@@ -75,7 +75,7 @@ struct Server::Impl {
   Impl(Session& s, WebAssets a, const ServerOptions& o)
       : session(s), assets(std::move(a)), options(o) {
     const auto snap = session.snapshot();
-    const Camera camera = default_camera(snap->geometry->position, snap->geometry->indices, 1.0f);
+    const Camera camera = default_camera(snap->mesh.position(), snap->mesh.indices(), 1.0f);
     scene = scene_json(session.hierarchy(), camera, session.options().solver.converge);
     const int threads = std::max(2, o.threads);
     http.new_task_queue = [threads] { return new httplib::ThreadPool(size_t(threads)); };
@@ -245,7 +245,7 @@ struct Server::Impl {
 
   void export_file(const ExportRequest& r, httplib::Response& res) {
     const auto snap = session.snapshot();
-    const OutputMesh mesh = snap->output_mesh();
+    const OutputMesh& mesh = snap->mesh;
     const fs::path path =
         fs::temp_directory_path() /
         fmt::format("rad-serve-{}-{}{}", ::getpid(), export_counter++, extension(r.format));
@@ -258,11 +258,11 @@ struct Server::Impl {
     } remove{path};
     if (r.format == ExportFormat::Png) {
       const RenderOptions ro{r.width, r.height};
-      const Camera camera =
-          r.camera ? *r.camera
-                   : default_camera(mesh.position, mesh.indices, float(r.width) / float(r.height));
+      const Camera camera = r.camera ? *r.camera
+                                     : default_camera(mesh.position(), mesh.indices(),
+                                                      float(r.width) / float(r.height));
       write_image_file(path.string(),
-                       render_image(mesh.position, mesh.display, mesh.indices, camera, ro),
+                       render_image(mesh.position(), mesh.display, mesh.indices(), camera, ro),
                        snap->tone);
     } else {
       MeshFileOptions mo;

@@ -198,7 +198,7 @@ void Session::apply(const Edit& edit) {
       notice_ = paused_ ? "paused" : "resumed";
     } else if (const auto* r = std::get_if<RestartEdit>(&edit)) {
       state_ = make_solver_state(h_, options_.solver);
-      flat_.reset();
+      builder_.reset();
       if (r->original_materials) controls_ = original_controls_;
       // A fresh state holds the scene's materials: re-apply the edited ones before any shot
       // (emission changes become the initial unshot radiosity, exactly).
@@ -230,10 +230,10 @@ void Session::publish() {
   const auto start = Clock::now();
   auto snap = std::make_shared<Snapshot>();
   bool geometry_changed = false;
-  snap->geometry = flat_.update(state_, &geometry_changed);
+  snap->mesh.geometry = builder_.update(state_, &geometry_changed);
   if (geometry_changed) ++mesh_version_;
-  flat_.values(state_, options_.ambient ? ambient_radiosity(state_) : Vec3(0.0f), snap->radiosity,
-               snap->display);
+  builder_.values(state_, options_.ambient ? ambient_radiosity(state_) : Vec3(0.0f),
+                  snap->mesh.radiosity, snap->mesh.display);
   bool stop_requested = false;
   {
     std::lock_guard lock(mutex_);
@@ -245,10 +245,7 @@ void Session::publish() {
                  : done         ? SessionStatus::Converged
                                 : SessionStatus::Running;
   if (!exposure_locked_) {
-    OutputMesh shown;  // scene_tone_map reads only the displayed values
-    shown.display = std::move(snap->display);
-    base_scale_ = scene_tone_map(state_, shown, options_.curve, 0.0f).scale;
-    snap->display = std::move(shown.display);
+    base_scale_ = scene_tone_map(state_, snap->mesh.display, options_.curve, 0.0f).scale;
     // Fixed from the first convergence (or a refit) on, so later edits show as they are.
     if (done || refit_pending_) exposure_locked_ = true;
     refit_pending_ = false;
@@ -277,9 +274,9 @@ void Session::publish() {
   snap->rays_per_second = rays_per_second_;
   snap->seconds = solve_seconds_;
   snap->build_seconds = publish_seconds_;
-  snap->colour.resize(snap->display.size());
-  for (size_t i = 0; i < snap->display.size(); ++i) {
-    snap->colour[i] = tone_map(snap->display[i], snap->tone);
+  snap->colour.resize(snap->mesh.display.size());
+  for (size_t i = 0; i < snap->mesh.display.size(); ++i) {
+    snap->colour[i] = tone_map(snap->mesh.display[i], snap->tone);
   }
   const std::vector<int64_t> elements = elements_per_object(state_);
   snap->objects.resize(h_.objects.size());

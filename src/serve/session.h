@@ -13,7 +13,7 @@
 #include <variant>
 #include <vector>
 
-#include "serve/flat_mesh.h"
+#include "export/output_mesh.h"
 #include "serve/material_controls.h"
 #include "serve/snapshot.h"
 #include "solver/solver_state.h"
@@ -132,7 +132,7 @@ class Session {
   float exposure_stops_ = 0.0f;
   float base_scale_ = 1.0f;  // the automatic exposure, before the user's stops
   std::string notice_;
-  FlatMesh flat_;
+  OutputMeshBuilder builder_;
   uint64_t version_ = 0, mesh_version_ = 0;
   std::chrono::steady_clock::time_point last_publish_, rate_mark_time_;
   uint64_t rate_mark_rays_ = 0;

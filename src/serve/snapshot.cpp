@@ -16,16 +16,6 @@ const char* to_string(SessionStatus s) {
   return "?";
 }
 
-OutputMesh Snapshot::output_mesh() const {
-  OutputMesh m;
-  m.position = geometry->position;
-  m.indices = geometry->indices;
-  m.face_polygon = geometry->face_polygon;
-  m.radiosity = radiosity;
-  m.display = display;
-  return m;
-}
-
 std::vector<int64_t> elements_per_object(const SolverState& s) {
   const Hierarchy& h = *s.hierarchy;
   std::vector<int64_t> prefix(s.mesh.polygons.size() + 1, 0);

@@ -16,13 +16,6 @@ namespace rad {
 enum class SessionStatus : uint8_t { Running, Paused, Converged, Stopped };
 const char* to_string(SessionStatus s);
 
-/// Faces and vertex positions; shared by successive snapshots while subdivision adds nothing.
-struct SnapshotGeometry {
-  std::vector<Vec3> position;
-  std::vector<uint32_t> indices;      // 3 per face
-  std::vector<int32_t> face_polygon;  // the polygon each face belongs to
-};
-
 /// Per hierarchy object: leaf elements below it, and (Pures) the controls of its material.
 struct ObjectSnapshot {
   int64_t elements = 0;
@@ -40,19 +33,16 @@ struct Snapshot {
   double seconds = 0.0;        // solving time since the (re)start, pauses excluded
   double build_seconds = 0.0;  // how long the previous snapshot took to build
   int64_t elements = 0;        // leaf elements of every polygon
-  std::shared_ptr<const SnapshotGeometry> geometry;
-  std::vector<Vec3> radiosity;  // per vertex: B = E + rho H
-  std::vector<Vec3> display;    // per vertex: B plus the ambient term when asked
-  std::vector<Vec3> colour;     // per vertex: tone_map(display, tone), display-referred linear
+  // The solved view as `rad` writes it; its geometry is shared by successive snapshots while
+  // subdivision adds nothing.
+  OutputMesh mesh;
+  std::vector<Vec3> colour;  // per vertex: tone_map(mesh.display, tone), display-referred linear
   ToneMap tone;
   float exposure_stops = 0.0f;                      // the user's offset, included in tone.scale
   bool exposure_locked = false;                     // tone.scale no longer follows the solve
   std::vector<ObjectSnapshot> objects;              // per hierarchy object
   std::vector<std::pair<int64_t, double>> history;  // (shot, unshot fraction), at most ~256
   std::string notice;  // the outcome of the last edit, for the page ("" when none)
-
-  /// The mesh as the writers take it (a copy).
-  OutputMesh output_mesh() const;
 };
 
 /// Leaf elements per object: polygons' leaf counts summed over each object's triangle range.

@@ -6,11 +6,11 @@ namespace rad {
 namespace {
 
 /// 100 grey surfaces at 0.01 .. 1.00 and one light at 50 (alone it would set the exposure).
-OutputMesh lit_room() {
-  OutputMesh m;
-  for (int i = 1; i <= 100; ++i) m.display.push_back(Vec3(0.01f * float(i)));
-  m.display.push_back(Vec3(50.0f));
-  return m;
+std::vector<Vec3> lit_room() {
+  std::vector<Vec3> display;
+  for (int i = 1; i <= 100; ++i) display.push_back(Vec3(0.01f * float(i)));
+  display.push_back(Vec3(50.0f));
+  return display;
 }
 
 SolverState with_emission(Vec3 e) {
@@ -29,8 +29,7 @@ TEST(Exposure, IgnoresLightSourcesAndMapsThe99thPercentileToOne) {
 }
 
 TEST(Exposure, UsesEveryValueWhenEverySurfaceEmits) {
-  OutputMesh furnace;
-  furnace.display.assign(10, Vec3(2.0f));
+  const std::vector<Vec3> furnace(10, Vec3(2.0f));
   EXPECT_NEAR(scene_tone_map(with_emission(Vec3(1.0f)), furnace, ToneCurve::Clamp, 0).scale, 0.5f,
               1e-6f);
 }

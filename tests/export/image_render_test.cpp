@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "export/output_mesh.h"
+#include "mesh_parts.h"
 
 namespace rad {
 namespace {
@@ -15,7 +16,7 @@ namespace {
 enum Object : int { kNone = -1, kFloor = 0, kBlocker = 1, kWall = 2 };
 
 struct TestScene {
-  OutputMesh mesh;
+  testing::MeshParts mesh;
   std::vector<int> face_object;
   Camera camera;
   RenderOptions options;
@@ -254,7 +255,7 @@ TEST(ImageRender, EveryPixelAwayFromEdgesMatchesTheReference) {
 TEST(ImageRender, SharedEdgesAreWatertight) {
   // A jittered 40 x 40 grid of triangles filling the view, seen at an angle: any crack or
   // double-counted subsample would show as a pixel other than exactly 1.
-  OutputMesh m;
+  testing::MeshParts m;
   const int n = 40;
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> jitter(-0.4f, 0.4f);
@@ -295,7 +296,7 @@ TEST(ImageRender, SharedEdgesAreWatertight) {
 
 TEST(ImageRender, ClipsFacesThatReachBehindTheEye) {
   // A huge floor under an eye looking level: below the horizon every pixel is floor.
-  OutputMesh m;
+  testing::MeshParts m;
   const float r = 1e4f;
   m.position = {Vec3(-r, 0, -r), Vec3(-r, 0, r), Vec3(r, 0, r), Vec3(r, 0, -r)};
   m.display.assign(4, Vec3(0.5f));

@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "export/mesh_file.h"
+#include "mesh_parts.h"
 
 namespace rad {
 namespace {
@@ -24,8 +25,8 @@ fs::path temp_dir() {
 }
 
 /// Two polygons: a quad (two faces) and a triangle, with radiosity above and below 1.
-OutputMesh sample_mesh() {
-  OutputMesh m;
+testing::MeshParts sample_mesh() {
+  testing::MeshParts m;
   m.position = {Vec3(0, 0, 0),     Vec3(1.5f, 0, 0), Vec3(1.5f, 2, 0),         Vec3(0, 2, 0.25f),
                 Vec3(-1, 0.5f, 3), Vec3(-2, 1, 3),   Vec3(-1.5f, 2.5f, 3.125f)};
   m.radiosity = {
@@ -39,12 +40,12 @@ OutputMesh sample_mesh() {
 
 const ToneMap kTone{0.7f, ToneCurve::Reinhard};
 
-std::string write(const std::string& name, const OutputMesh& m, bool ascii = false) {
+std::string write(const std::string& name, const testing::MeshParts& m, bool ascii = false) {
   const std::string path = (temp_dir() / name).string();
   MeshFileOptions o;
   o.tone = kTone;
   o.ascii = ascii;
-  write_mesh_file(path, m, o);
+  write_mesh_file(path, m.view(), o);
   return path;
 }
 
@@ -137,7 +138,7 @@ PlyData read_ply(const std::string& path) {
   return d;
 }
 
-void check_ply(const std::string& path, const OutputMesh& m, float tol) {
+void check_ply(const std::string& path, const testing::MeshParts& m, float tol) {
   const PlyData d = read_ply(path);
   ASSERT_EQ(d.xyz.size(), m.position.size());
   for (size_t v = 0; v < m.position.size(); ++v) {
@@ -166,7 +167,7 @@ TEST(MeshFormats, AsciiPlyRoundTrips) {
 // ---- OFF and OBJ ----------------------------------------------------------------------------
 
 TEST(MeshFormats, CoffRoundTripsWithDisplayColoursInUnitRange) {
-  const OutputMesh m = sample_mesh();
+  const testing::MeshParts m = sample_mesh();
   std::ifstream in(write("m.off", m));
   std::string magic;
   size_t nv = 0, nf = 0, ne = 1;
@@ -196,7 +197,7 @@ TEST(MeshFormats, CoffRoundTripsWithDisplayColoursInUnitRange) {
 }
 
 TEST(MeshFormats, ObjRoundTripsWithVertexColours) {
-  const OutputMesh m = sample_mesh();
+  const testing::MeshParts m = sample_mesh();
   std::ifstream in(write("m.obj", m));
   std::string line;
   size_t v = 0, f = 0;
@@ -243,7 +244,7 @@ std::vector<Vec3> read_vec3(const tinygltf::Model& g, int accessor) {
 }
 
 void check_gltf(const std::string& path, bool binary) {
-  const OutputMesh m = sample_mesh();
+  const testing::MeshParts m = sample_mesh();
   tinygltf::TinyGLTF loader;
   tinygltf::Model g;
   std::string err, warn;
@@ -319,7 +320,7 @@ TEST(MeshFormats, KhronosValidatorReportsNoErrors) {
                     "install --prefix "
                  << RAD_BINARY_DIR << "/npm gltf-validator";
   }
-  OutputMesh big = sample_mesh();
+  testing::MeshParts big = sample_mesh();
   const std::string files = write("v.gltf", big) + " " + write("v.glb", big);
   const fs::path log = temp_dir() / "validator.log";
   const std::string cmd = "NODE_PATH='" + node_path +
@@ -345,7 +346,7 @@ TEST(MeshFormats, ExtensionChoosesTheFormatAndUnknownOnesAreRejected) {
 }
 
 TEST(MeshFormats, AnEmptyMeshStillWritesValidFiles) {
-  const OutputMesh empty;
+  const testing::MeshParts empty;
   for (const char* name : {"e.ply", "e.off", "e.obj", "e.gltf", "e.glb"}) {
     EXPECT_NO_THROW(write(name, empty)) << name;
     EXPECT_TRUE(fs::exists(temp_dir() / name)) << name;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "mesh_parts.h"
+
 namespace rad {
 namespace {
 
@@ -14,14 +16,14 @@ TEST(Seams, MeasuresTheJumpAcrossAnEdgeSharedWithAnUnsplitNeighbour) {
   t.normal = {Vec3(0, 0, 1), Vec3(0, 0, 1)};
   t.area = {0.5f, 0.5f};
   t.object = {0, 0};
-  OutputMesh m;
+  testing::MeshParts m;
   // Polygon 0: corners 0, 1, 2 and the edge's midpoint 3.
   m.position = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5f, 0, 0}, {1, 0, 0}, {0, 0, 0}, {0, -1, 0}};
   m.radiosity = {Vec3(1), Vec3(1), Vec3(1), Vec3(1.5f, 1.25f, 1), Vec3(1), Vec3(1), Vec3(1)};
   m.display = m.radiosity;
   m.indices = {0, 3, 2, 3, 1, 2, 4, 5, 6};
   m.face_polygon = {0, 0, 1};
-  const SeamReport r = measure_seams(m, t);
+  const SeamReport r = measure_seams(m.view(), t);
   EXPECT_EQ(r.shared_edges, 1u);
   EXPECT_EQ(r.vertices_checked, 5u);  // three on polygon 0's side, two on polygon 1's
   EXPECT_FLOAT_EQ(float(r.largest_jump), 0.5f);
@@ -36,13 +38,13 @@ TEST(Seams, IgnoresEdgesBetweenPolygonsThatAreNotCoplanar) {
   t.normal = {Vec3(0, 0, 1), Vec3(0, 1, 0)};
   t.area = {0.5f, 0.5f};
   t.object = {0, 0};
-  OutputMesh m;
+  testing::MeshParts m;
   m.position = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 0, 0}, {0, 0, 0}, {0, 0, 1}};
   m.radiosity = {Vec3(1), Vec3(1), Vec3(1), Vec3(5), Vec3(5), Vec3(5)};
   m.display = m.radiosity;
   m.indices = {0, 1, 2, 3, 4, 5};
   m.face_polygon = {0, 1};
-  EXPECT_EQ(measure_seams(m, t).shared_edges, 0u);
+  EXPECT_EQ(measure_seams(m.view(), t).shared_edges, 0u);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include <fstream>
 
+#include "../export/mesh_parts.h"
 #include "core/error.h"
 #include "export/ply_writer.h"
 #include "reference/ply_reader.h"
@@ -32,8 +33,8 @@ Vec3 field(const Vec3& p) { return Vec3(1.0f + p.x, 2.0f + p.y, 3.0f + p.x - p.y
 
 // Each polygon cut into four faces at its edge midpoints (vertices not shared across
 // polygons, as rad writes them), radiosity = field at the vertices.
-OutputMesh split_mesh(const Hierarchy& h) {
-  OutputMesh m;
+testing::MeshParts split_mesh(const Hierarchy& h) {
+  testing::MeshParts m;
   for (size_t t = 0; t < h.triangles.size(); ++t) {
     const auto& c = h.triangles.corners[t];
     const uint32_t base = uint32_t(m.position.size());
@@ -51,7 +52,7 @@ OutputMesh split_mesh(const Hierarchy& h) {
   return m;
 }
 
-ShadedFacesView view(const OutputMesh& m) {
+ShadedFacesView view(const testing::MeshParts& m) {
   return {m.position, m.radiosity, m.indices, m.face_polygon};
 }
 
@@ -71,7 +72,7 @@ ReferenceSet reference_of(const Hierarchy& h, float scale) {
 
 TEST(Compare, LinearFieldIsInterpolatedExactly) {
   const Hierarchy h = unit_square();
-  const OutputMesh m = split_mesh(h);
+  const testing::MeshParts m = split_mesh(h);
   const ComparisonReport r = compare_to_reference(view(m), reference_of(h, 1.0f));
   EXPECT_EQ(r.all.points, 100u);
   EXPECT_EQ(r.outside, 0u);
@@ -83,7 +84,7 @@ TEST(Compare, LinearFieldIsInterpolatedExactly) {
 
 TEST(Compare, ReportsRelativeErrorsPerChannelAndOverall) {
   const Hierarchy h = unit_square();
-  const OutputMesh m = split_mesh(h);
+  const testing::MeshParts m = split_mesh(h);
   // The reference 2% brighter: rad is off by 1/1.02 - 1 of the reference everywhere.
   const ComparisonReport r = compare_to_reference(view(m), reference_of(h, 1.02f));
   const double expected = 1.0 - 1.0 / 1.02;
@@ -98,7 +99,7 @@ TEST(Compare, ReportsRelativeErrorsPerChannelAndOverall) {
 
 TEST(Compare, FiguresWithoutEmittersLeaveTheirPointsOut) {
   const Hierarchy h = unit_square();
-  OutputMesh m = split_mesh(h);
+  testing::MeshParts m = split_mesh(h);
   for (size_t v = 0; v < m.position.size() / 2; ++v) m.radiosity[v] *= 2.0f;  // polygon 0 off
   const std::vector<uint8_t> emitting = {1, 0};                               // ... but it "emits"
   const ComparisonReport r = compare_to_reference(view(m), reference_of(h, 1.0f), emitting);
@@ -110,7 +111,7 @@ TEST(Compare, FiguresWithoutEmittersLeaveTheirPointsOut) {
 
 TEST(Compare, UsesOnlyFacesOfThePointsOwnPolygon) {
   const Hierarchy h = unit_square();
-  OutputMesh m = split_mesh(h);
+  testing::MeshParts m = split_mesh(h);
   for (size_t v = 0; v < m.position.size() / 2; ++v) m.radiosity[v] = Vec3(100.0f);  // polygon 0
   ReferenceSet ref = reference_of(h, 1.0f);
   const ComparisonReport r = compare_to_reference(view(m), ref);
@@ -122,7 +123,7 @@ TEST(Compare, UsesOnlyFacesOfThePointsOwnPolygon) {
 
 TEST(Compare, MissingPolygonIsAnError) {
   const Hierarchy h = unit_square();
-  OutputMesh m = split_mesh(h);
+  testing::MeshParts m = split_mesh(h);
   m.indices.resize(m.indices.size() / 2);
   m.face_polygon.resize(m.face_polygon.size() / 2);
   EXPECT_THROW(compare_to_reference(view(m), reference_of(h, 1.0f)), Error);
@@ -130,13 +131,13 @@ TEST(Compare, MissingPolygonIsAnError) {
 
 TEST(RadiosityPly, ReadsBackWhatRadWritesAndRecoversPolygons) {
   const Hierarchy h = unit_square();
-  const OutputMesh m = split_mesh(h);
+  const testing::MeshParts m = split_mesh(h);
   for (bool ascii : {false, true}) {
     const std::string path =
         std::string(RAD_BINARY_DIR) + (ascii ? "/compare_test_ascii.ply" : "/compare_test.ply");
     {
       std::ofstream out(path, std::ios::binary);
-      write_ply(out, m, ToneMap{}, ascii);
+      write_ply(out, m.view(), ToneMap{}, ascii);
     }
     const PlyMesh back = read_radiosity_ply(path);
     ASSERT_EQ(back.position.size(), m.position.size());

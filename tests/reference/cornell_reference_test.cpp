@@ -33,7 +33,7 @@ TEST(CornellReference, DefaultSolveWithinOnePercentMeanOfPathTracedReference) {
   const OutputMesh mesh = make_output_mesh(state, /*ambient=*/false);
 
   const ComparisonReport r =
-      compare_to_reference({mesh.position, mesh.radiosity, mesh.indices, mesh.face_polygon},
+      compare_to_reference({mesh.position(), mesh.radiosity, mesh.indices(), mesh.face_polygon()},
                            reference, emitting_polygons(h));
   std::printf("rad (default options, Embree): %s after %lld shots, %zu faces, %.1f s\n",
               to_string(stop), (long long)state.shots, mesh.face_count(), seconds);
@@ -71,10 +71,10 @@ TEST(CornellReference, TessellatedBoxKeepsTheAnswer) {
   // The reference names the uncut box's polygons: each face is matched to the one it lies on.
   const Hierarchy uncut = build_hierarchy(parse_scene_file(root + "/scenes/cornell_box.des"));
   const std::vector<int32_t> face_polygon =
-      assign_face_polygons(uncut.triangles, mesh.position, mesh.indices);
+      assign_face_polygons(uncut.triangles, mesh.position(), mesh.indices());
   const ComparisonReport r =
-      compare_to_reference({mesh.position, mesh.radiosity, mesh.indices, face_polygon}, reference,
-                           emitting_polygons(uncut));
+      compare_to_reference({mesh.position(), mesh.radiosity, mesh.indices(), face_polygon},
+                           reference, emitting_polygons(uncut));
   std::printf("Cornell box cut 4 x 4 (%zu triangles): %lld shots\n", h.triangles.size(),
               (long long)state.shots);
   std::fputs(format_report(r).c_str(), stdout);

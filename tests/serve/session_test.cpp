@@ -34,13 +34,13 @@ bool converged(const Snapshot& s) { return s.status == SessionStatus::Converged;
 
 // Every array of a snapshot agrees with the others.
 void expect_consistent(const Snapshot& s) {
-  ASSERT_TRUE(s.geometry);
-  const SnapshotGeometry& g = *s.geometry;
+  ASSERT_TRUE(s.mesh.geometry);
+  const MeshGeometry& g = *s.mesh.geometry;
   ASSERT_EQ(g.indices.size() % 3, 0u);
   EXPECT_EQ(g.face_polygon.size(), g.indices.size() / 3);
   EXPECT_EQ(s.colour.size(), g.position.size());
-  EXPECT_EQ(s.display.size(), g.position.size());
-  EXPECT_EQ(s.radiosity.size(), g.position.size());
+  EXPECT_EQ(s.mesh.display.size(), g.position.size());
+  EXPECT_EQ(s.mesh.radiosity.size(), g.position.size());
   for (uint32_t i : g.indices) ASSERT_LT(i, g.position.size());
   for (const Vec3& c : s.colour) {
     ASSERT_GE(c.x, 0.0f);
@@ -124,7 +124,8 @@ TEST_F(SessionTest, SnapshotsStayConsistentWhileTheSolveRuns) {
     EXPECT_GE(snap->mesh_version, prev->mesh_version);
     EXPECT_GE(snap->shots, prev->shots);
     if (snap->mesh_version == prev->mesh_version) {
-      EXPECT_EQ(snap->geometry, prev->geometry) << "unchanged geometry is shared, not copied";
+      EXPECT_EQ(snap->mesh.geometry, prev->mesh.geometry)
+          << "unchanged geometry is shared, not copied";
     }
     prev = snap;
     ++seen;
@@ -215,9 +216,9 @@ TEST_F(SessionTest, RestartSolvesAgainWithTheCurrentOrTheOriginalMaterials) {
   ASSERT_TRUE(again);
   // The solver is deterministic: the same scene solved again from scratch gives the same answer.
   EXPECT_EQ(again->shots, first->shots);
-  ASSERT_EQ(again->radiosity.size(), first->radiosity.size());
-  for (size_t i = 0; i < first->radiosity.size(); ++i) {
-    ASSERT_EQ(again->radiosity[i], first->radiosity[i]) << "vertex " << i;
+  ASSERT_EQ(again->mesh.radiosity.size(), first->mesh.radiosity.size());
+  for (size_t i = 0; i < first->mesh.radiosity.size(); ++i) {
+    ASSERT_EQ(again->mesh.radiosity[i], first->mesh.radiosity[i]) << "vertex " << i;
   }
 }
 

@@ -1,0 +1,27 @@
+// An output mesh written field by field in a test, then viewed as the writers take it.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "export/output_mesh.h"
+
+namespace rad::testing {
+
+struct MeshParts {
+  std::vector<Vec3> position, radiosity, display;
+  std::vector<uint32_t> indices;
+  std::vector<int32_t> face_polygon;
+
+  size_t face_count() const { return indices.size() / 3; }
+  OutputMesh view() const {
+    OutputMesh m;
+    m.geometry =
+        std::make_shared<const MeshGeometry>(MeshGeometry{position, indices, face_polygon});
+    m.radiosity = radiosity;
+    m.display = display;
+    return m;
+  }
+};
+
+}  // namespace rad::testing
