@@ -8,11 +8,11 @@
 #include <set>
 
 #include "app/batch_summary.h"
-#include "app/scene_job.h"
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "export/image_file.h"
 #include "export/mesh_file.h"
+#include "run/scene_job.h"
 
 namespace rad {
 
@@ -55,7 +55,7 @@ struct Row {
 int run_batch(const CommandLine& cmd) {
   // Check every format before any work, so a typo fails at once.
   std::vector<std::string> mesh_exts, image_exts;
-  for (const std::string& f : cmd.batch_formats) {
+  for (const std::string& f : cmd.batch.formats) {
     const std::string name = "x." + f;
     try {
       check_mesh_extension(name);
@@ -72,8 +72,8 @@ int run_batch(const CommandLine& cmd) {
     }
   }
   if (mesh_exts.size() > 1) throw Error("batch writes one mesh format per scene");
-  fs::create_directories(cmd.batch_dir);
-  const std::vector<std::string> scenes = expand_scene_list(cmd.batch_scenes);
+  fs::create_directories(cmd.batch.dir);
+  const std::vector<std::string> scenes = expand_scene_list(cmd.batch.scenes);
 
   // Names over the whole list, so every shard gives a scene the same one.
   std::vector<std::string> names;
@@ -86,17 +86,21 @@ int run_batch(const CommandLine& cmd) {
   }
 
   std::vector<Row> rows;
-  for (size_t i = size_t(cmd.shard_index); i < scenes.size(); i += size_t(cmd.shard_count)) {
+  for (size_t i = size_t(cmd.batch.shard_index); i < scenes.size();
+       i += size_t(cmd.batch.shard_count)) {
     const std::string& scene = scenes[i];
     const std::string& name = names[i];
-    const fs::path base = fs::path(cmd.batch_dir) / name;
-    SceneJob job{scene, "", {}, base.string() + ".json", /*skip_if_done=*/true};
-    if (!mesh_exts.empty()) job.mesh_output = base.string() + "." + mesh_exts[0];
-    for (const std::string& e : image_exts) job.images.push_back(base.string() + "." + e);
-    if (!cmd.quiet) std::printf("== %s\n", scene.c_str());
+    const fs::path base = fs::path(cmd.batch.dir) / name;
+    SceneJob job = cmd.job;
+    job.input.path = scene;
+    job.stats_json = base.string() + ".json";
+    job.skip_if_done = true;
+    if (!mesh_exts.empty()) job.outputs.mesh = base.string() + "." + mesh_exts[0];
+    for (const std::string& e : image_exts) job.outputs.images.push_back(base.string() + "." + e);
+    if (!cmd.run.quiet) std::printf("== %s\n", scene.c_str());
     Row row{scene, "ok", "", {}};
     try {
-      row.result = run_scene_job(cmd, job);
+      row.result = run_scene_job(cmd.run, job);
       row.detail = to_string(row.result.stop);
       if (row.result.stop == StopReason::Interrupted) row.status = "partial";
       if (row.result.skipped) row.status = "done", row.detail = "outputs complete: skipped";
@@ -109,9 +113,9 @@ int run_batch(const CommandLine& cmd) {
     if (!row.result.skipped) {  // a skipped scene keeps the row of the run that solved it
       const SceneJobResult& x = row.result;
       merge_batch_record(
-          cmd.batch_dir,
+          cmd.batch.dir,
           {name, scene, row.status == "FAILED" ? "failed" : row.status, row.detail, x.seconds,
-           x.shots, uint64_t(x.vertices), cmd.shard_index, cmd.shard_count});
+           x.shots, uint64_t(x.vertices), cmd.batch.shard_index, cmd.batch.shard_count});
     }
     if (interrupt_signal()) break;  // Ctrl-C: the scene in progress was written; no more
   }

@@ -1,65 +1,50 @@
-// The command line: options, their defaults and their parsing.
+// The command line: one option set per mode, built on the run layer's shared sets, and its
+// parsing. A mode registers only the options it uses, so any other is a usage error.
 #pragma once
 
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "export/camera.h"
-#include "export/tonemap.h"
-#include "hierarchy/auto_hierarchy.h"
-#include "scene/model_scene.h"
-#include "solver/options.h"
-#include "visibility/backend.h"
+#include "run/run_options.h"
+#include "run/scene_job.h"
+#include "serve/server.h"
 
 namespace rad {
 
-struct CommandLine {
-  std::string scene;                       // a description (.des) or a model (.obj, .ply)
-  ModelOptions model;                      // --emit rules for a model
-  std::optional<HierarchyMode> hierarchy;  // --hierarchy; none: auto for models, file else
-  std::string output;                      // empty with --check
-  bool check = false;                      // parse, validate, summarise; no solve
-  std::optional<BackendKind> cross_check;  // --cross-check B: solve with --backend and B, compare
-  BackendKind backend = BackendKind::Embree;
-  bool packets = true;
-  int threads = 0;  // 0: all cores
-  SolverOptions solver;
-  bool ascii = false;
-  bool ambient = true;
-  ToneCurve tonemap = ToneCurve::Clamp;
-  float exposure = 0.0f;                      // stops added to the automatic exposure
-  std::vector<std::string> images;            // --image, repeatable: .png, .hdr, .exr or .pfm
-  std::optional<Camera> camera;               // --camera; none: default_camera frames the scene
-  int image_width = 800, image_height = 800;  // --size WxH
-  std::string stats_json;
-  // --checkpoint FILE: the solver state saved every checkpoint_every seconds, when stopped and
-  // at the end; a run started with the file present resumes from it.
-  std::string checkpoint;
-  double checkpoint_every = 60.0;
-  size_t max_memory = 0;  // --max-memory; 0: 90% of the machine's (or the cgroup's) memory
-  bool quiet = false;
-  // rad batch OUTDIR SCENE...: every scene solved with the same options.
-  bool batch = false;
-  std::string batch_dir;
-  std::vector<std::string> batch_scenes;                 // .des files, or .txt lists of them
-  std::vector<std::string> batch_formats{"ply", "png"};  // one output per extension
+enum class Mode : uint8_t {
+  Solve,       // rad [options] SCENE OUTPUT: one scene (or its ranks under mpirun)
+  Check,       // rad --check SCENE: parse, validate, summarise
+  CrossCheck,  // rad --cross-check B SCENE: two backends compared
+  Batch,       // rad batch OUTDIR SCENE...
+  Serve,       // rad serve SCENE
+  Convert,     // rad convert IN OUT
+};
+
+/// rad batch OUTDIR SCENE...: every scene solved with the same options.
+struct BatchOptions {
+  std::string dir;
+  std::vector<std::string> scenes;                 // scene files, or .txt lists of them
+  std::vector<std::string> formats{"ply", "png"};  // one output per extension
   int shard_index = 0, shard_count = 1;  // --shard I/N: the scenes i of the list with i % N == I
-  // rad convert IN OUT: the scene itself in another format (scene: IN, output: OUT).
-  bool convert = false;
-  // rad serve SCENE [--port P] [--host H]: the interactive mode (output: --output, optional).
-  bool serve = false;
-  std::string host = "127.0.0.1";
-  int port = 8080;
+};
+
+struct CommandLine {
+  Mode mode = Mode::Solve;
+  RunOptions run;  // every mode that solves
+  // The scene and what is written from it. Solve: all of it; Check, CrossCheck: the scene;
+  // Batch: the template of every scene's job (outputs named per scene); Serve: the scene and
+  // the outputs written when it stops; Convert: the scene (IN).
+  SceneJob job;
+  std::optional<BackendKind> cross_check;  // CrossCheck: the second backend
+  BatchOptions batch;                      // Batch
+  ServerOptions server;                    // Serve
+  std::string converted;                   // Convert: OUT
 };
 
 /// `--shard` of rad batch: "I/N" (0 <= I < N), or "slurm" for the Slurm job array's task index
 /// and count. Throws rad::Error otherwise.
 void parse_shard(const std::string& text, int* index, int* count);
-
-/// Worker threads of one process: --threads, or the cores shared among the MPI ranks that run
-/// on this machine (all of them without MPI).
-int thread_count(const CommandLine& cmd);
 
 /// Parses argv. Accepts the original's single-dash flags (-noshadows, -minsize F). Returns
 /// nothing when the program should exit with `exit_code` (after --help or a usage error, which

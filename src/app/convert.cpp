@@ -10,16 +10,17 @@
 namespace rad {
 
 int run_convert(const CommandLine& cmd) {
-  check_scene_extension(cmd.output);
-  const HierarchyMode mode = cmd.hierarchy.value_or(HierarchyMode::AsRead);
-  const SceneDescription scene = regroup(read_scene_file(cmd.scene, cmd.model), mode);
+  check_scene_extension(cmd.converted);
+  const SceneInput& in = cmd.job.input;
+  const HierarchyMode mode = in.hierarchy.value_or(HierarchyMode::AsRead);
+  const SceneDescription scene = regroup(read_scene_file(in.path, in.model), mode);
   // A regrouped scene was built once already, and warned then.
   const Hierarchy h = build_hierarchy(scene, {}, /*warn=*/mode == HierarchyMode::AsRead);
-  const std::vector<std::string> lost = write_scene_file(cmd.output, scene, h);
-  if (!cmd.quiet) {
+  const std::vector<std::string> lost = write_scene_file(cmd.converted, scene, h);
+  if (!cmd.run.quiet) {
     size_t pures = 0;
     for (const SceneObject& o : h.objects) pures += o.kind == ObjectKind::Pure;
-    std::printf("%s: %zu objects (%zu Pures), %zu triangles\n", cmd.output.c_str(),
+    std::printf("%s: %zu objects (%zu Pures), %zu triangles\n", cmd.converted.c_str(),
                 h.objects.size(), pures, h.triangles.size());
     for (const std::string& l : lost) std::printf("note: %s\n", l.c_str());
   }

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
-#include <tbb/info.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -11,6 +10,7 @@
 
 #include "hierarchy/auto_hierarchy.h"
 #include "hierarchy/hierarchy.h"
+#include "run/prepared_solve.h"
 #include "scene/scene_file.h"
 #include "solver/solver.h"
 #include "visibility/agreement.h"
@@ -104,11 +104,12 @@ class ComparingBackend final : public VisibilityBackend {
 }  // namespace
 
 int run_cross_check(const CommandLine& cmd) {
-  const BackendKind first = cmd.backend, second = *cmd.cross_check;
-  const Hierarchy h = load_hierarchy(cmd.scene, cmd.model, cmd.hierarchy);
-  const int threads = thread_count(cmd);
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
-  std::printf("Cross-check of %s: %s against %s (%zu triangles)\n", cmd.scene.c_str(),
+  const BackendKind first = cmd.run.backend, second = *cmd.cross_check;
+  const SceneInput& in = cmd.job.input;
+  const Hierarchy h = load_hierarchy(in.path, in.model, in.hierarchy);
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                            size_t(thread_count(cmd.run.threads)));
+  std::printf("Cross-check of %s: %s against %s (%zu triangles)\n", in.path.c_str(),
               to_string(first), to_string(second), h.triangles.size());
 
   const auto brute = make_visibility_backend(BackendKind::Brute, h);
@@ -119,7 +120,7 @@ int run_cross_check(const CommandLine& cmd) {
   }
 
   // The first solve asks both backends every ray it casts and goes by the first one's answers.
-  SolverState a = make_solver_state(h, cmd.solver), b = make_solver_state(h, cmd.solver);
+  SolverState a = make_solver_state(h, cmd.run.solver), b = make_solver_state(h, cmd.run.solver);
   const auto vis_a = make_visibility_backend(first, h), vis_b = make_visibility_backend(second, h);
   const ComparingBackend both(*vis_a, *vis_b);
   const StopReason stop_a = solve(a, both);

@@ -1,4 +1,5 @@
-// rad: scene text -> parse -> hierarchy -> mesh -> visibility -> solver -> export.
+// rad: scene text or model -> parse -> hierarchy -> mesh -> visibility -> solver -> export,
+// through the run layer (run/) that every mode shares.
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -9,58 +10,42 @@
 #include "app/cli.h"
 #include "app/convert.h"
 #include "app/cross_check.h"
-#include "app/scene_job.h"
+#include "app/serve.h"
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "hierarchy/auto_hierarchy.h"
 #include "hierarchy/hierarchy.h"
+#include "run/scene_job.h"
 #include "scene/scene_file.h"
-#include "serve/run_serve.h"
 #include "solver/ranks.h"
 
 namespace {
 
-rad::ServeConfig serve_config(const rad::CommandLine& cmd) {
-  rad::ServeConfig c;
-  c.scene = cmd.scene;
-  c.model = cmd.model;
-  c.hierarchy = cmd.hierarchy;
-  c.server.host = cmd.host;
-  c.server.port = cmd.port;
-  c.session.solver = cmd.solver;
-  c.session.ambient = cmd.ambient;
-  c.session.curve = cmd.tonemap;
-  c.session.exposure = cmd.exposure;
-  c.backend = cmd.backend;
-  c.packets = cmd.packets;
-  c.threads = cmd.threads;
-  c.output = cmd.output;
-  c.images = cmd.images;
-  c.camera = cmd.camera;
-  c.image_width = cmd.image_width;
-  c.image_height = cmd.image_height;
-  c.ascii = cmd.ascii;
-  c.quiet = cmd.quiet;
-  return c;
-}
-
 int run(const rad::CommandLine& cmd, rad::Ranks* ranks) {
   using namespace rad;
-  if (ranks && ranks->size() > 1 &&
-      (cmd.convert || cmd.batch || cmd.serve || cmd.cross_check || cmd.check)) {
+  if (ranks && ranks->size() > 1 && cmd.mode != Mode::Solve) {
     throw Error(
         "under mpirun rad solves one scene (rad [options] SCENE OUTPUT); rad batch spreads "
         "scenes over machines with --shard instead");
   }
-  if (cmd.convert) return run_convert(cmd);
-  if (cmd.batch) return run_batch(cmd);
-  if (cmd.serve) return run_serve(serve_config(cmd));
-  if (cmd.cross_check) return run_cross_check(cmd);
-  if (cmd.check) {
-    std::fputs(summarize(load_hierarchy(cmd.scene, cmd.model, cmd.hierarchy)).c_str(), stdout);
-    return 0;
+  switch (cmd.mode) {
+    case Mode::Convert:
+      return run_convert(cmd);
+    case Mode::Batch:
+      return run_batch(cmd);
+    case Mode::Serve:
+      return run_serve(cmd);
+    case Mode::CrossCheck:
+      return run_cross_check(cmd);
+    case Mode::Check: {
+      const SceneInput& in = cmd.job.input;
+      std::fputs(summarize(load_hierarchy(in.path, in.model, in.hierarchy)).c_str(), stdout);
+      return 0;
+    }
+    case Mode::Solve:
+      break;
   }
-  run_scene_job(cmd, SceneJob{cmd.scene, cmd.output, cmd.images, cmd.stats_json}, ranks);
+  run_scene_job(cmd.run, cmd.job, ranks);
   // Stopped by Ctrl-C or SIGTERM: the outputs hold the solution so far; say so in the status.
   return interrupt_signal() ? interrupted_exit_status(interrupt_signal()) : 0;
 }

@@ -429,6 +429,48 @@ TEST(CommandLine, HelpListsTheOptions) {
   }
 }
 
+TEST(CommandLine, EachModeRefusesTheOptionsItDoesNotUse) {
+  const std::string scene = (kScenes / "parallel_squares.des").string();
+  const fs::path dir = fs::temp_directory_path() / ("rad_modes_" + std::to_string(getpid()));
+  // rad serve solves until stopped and writes no statistics or checkpoints; rad batch names its
+  // outputs by --formats; --check solves nothing. Each is a usage error naming the option,
+  // before any work (no server started, no folder made).
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {"serve " + scene + " --port 0 --check", "--check"},
+      {"serve " + scene + " --port 0 --stats-json s.json", "--stats-json"},
+      {"serve " + scene + " --port 0 --time-limit 5", "--time-limit"},
+      {"serve " + scene + " --port 0 --checkpoint c.ckpt", "--checkpoint"},
+      {"serve " + scene + " --port 0 --max-memory 1G", "--max-memory"},
+      {"serve " + scene + " --port 0 --cross-check grid", "--cross-check"},
+      {"batch " + dir.string() + " " + scene + " --image x.png", "--image"},
+      {"batch " + dir.string() + " " + scene + " --checkpoint c.ckpt", "--checkpoint"},
+      {"batch " + dir.string() + " " + scene + " --stats-json s.json", "--stats-json"},
+      {"batch " + dir.string() + " " + scene + " --check", "--check"},
+      {"batch " + dir.string() + " " + scene + " --cross-check grid", "--cross-check"},
+      {"batch " + dir.string() + " " + scene + " --port 1", "--port"},
+      {scene + " out.ply --port 1", "--port"},
+      {scene + " out.ply --formats ply", "--formats"},
+      {"--check " + scene + " --checkpoint c.ckpt", "--checkpoint"},
+  };
+  for (const auto& [args, option] : refused) {
+    const RadRun r = run_rad(args);
+    EXPECT_NE(r.code, 0) << args;
+    EXPECT_NE(r.err.find(option), std::string::npos) << args << "\n" << r.err;
+    EXPECT_EQ(r.out.find("rad serve: http"), std::string::npos) << args;
+  }
+  EXPECT_FALSE(fs::exists(dir));
+  // What they do take.
+  const RadRun serve = run_rad("serve --help"), batch = run_rad("batch --help");
+  for (const char* opt : {"--port", "--host", "--output", "--image", "--max-shots", "--converge",
+                          "--backend", "--threads", "--emit", "--exposure"}) {
+    EXPECT_NE(serve.out.find(opt), std::string::npos) << "serve " << opt;
+  }
+  for (const char* opt : {"--formats", "--shard", "--max-shots", "--time-limit", "--max-memory",
+                          "--backend", "--camera", "--size", "--emit"}) {
+    EXPECT_NE(batch.out.find(opt), std::string::npos) << "batch " << opt;
+  }
+}
+
 TEST(CommandLine, ConvertTakesAModelWithoutLightsToADescriptionAndBack) {
   const fs::path dir = fs::temp_directory_path() / ("rad_convert_" + std::to_string(getpid()));
   fs::create_directories(dir);

@@ -1,4 +1,4 @@
-#include "app/report.h"
+#include "run/report.h"
 
 #include <fmt/format.h>
 #include <sys/resource.h>
@@ -9,6 +9,7 @@
 
 #include "core/atomic_file.h"
 #include "mesh/patch_mesh.h"
+#include "run/prepared_solve.h"
 
 namespace rad {
 
@@ -39,7 +40,7 @@ size_t peak_memory_bytes() {
   return size_t(u.ru_maxrss) * 1024;
 }
 
-void write_stats_json(const std::string& path, const CommandLine& cmd, const std::string& scene,
+void write_stats_json(const std::string& path, const RunOptions& run, const SceneJob& job,
                       const SolverState& s, StopReason stop, const RunTimes& t,
                       const SeamReport& seams, uint64_t job_fingerprint,
                       const std::vector<RankReport>& ranks) {
@@ -57,12 +58,12 @@ void write_stats_json(const std::string& path, const CommandLine& cmd, const std
       {"schema", "rad-stats"},
       {"version", 1},
       {"scene",
-       {{"path", scene},
+       {{"path", job.input.path},
         {"name", s.hierarchy->scene_name},
         {"triangles", s.hierarchy->triangles.size()}}},
-      {"backend", to_string(cmd.backend)},
-      {"packets", cmd.packets},
-      {"threads", thread_count(cmd)},
+      {"backend", to_string(run.backend)},
+      {"packets", run.packets},
+      {"threads", thread_count(run.threads)},
       {"options",
        {{"shadows", s.options.shadows},
         {"samples", s.options.sample_grid * s.options.sample_grid},
@@ -77,7 +78,7 @@ void write_stats_json(const std::string& path, const CommandLine& cmd, const std
       {"stop_reason", to_string(stop)},
       {"partial", stop == StopReason::Interrupted || stop == StopReason::MemoryLimit},
       {"checkpoint",
-       cmd.checkpoint.empty() ? nlohmann::json(nullptr) : nlohmann::json(cmd.checkpoint)},
+       job.checkpoint.empty() ? nlohmann::json(nullptr) : nlohmann::json(job.checkpoint)},
       {"rays",
        {{"shot", r.rays},
         {"hits_on_polygons", r.occluded},
@@ -99,7 +100,7 @@ void write_stats_json(const std::string& path, const CommandLine& cmd, const std
         {"absorbed_energy", s.absorbed_energy},
         {"unshot_fraction", s.unshot_fraction()},
         {"ambient", {ambient.x, ambient.y, ambient.z}},
-        {"ambient_displayed", cmd.ambient}}},
+        {"ambient_displayed", job.outputs.ambient}}},
       {"seconds",
        {{"parse", t.parse},
         {"build", t.build},

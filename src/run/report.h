@@ -6,8 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "app/cli.h"
 #include "export/seams.h"
+#include "run/run_options.h"
+#include "run/scene_job.h"
 #include "solver/distribute.h"
 #include "solver/solver.h"
 
@@ -23,7 +24,7 @@ struct RunTimes {
 std::string format_statistics(const SolverState& s, double elapsed_seconds);
 
 /// Writes the JSON statistics (schema "rad-stats", version 1; see README) atomically.
-void write_stats_json(const std::string& path, const CommandLine& cmd, const std::string& scene,
+void write_stats_json(const std::string& path, const RunOptions& run, const SceneJob& job,
                       const SolverState& s, StopReason stop, const RunTimes& times,
                       const SeamReport& seams, uint64_t job_fingerprint = 0,
                       const std::vector<RankReport>& ranks = {});

@@ -1,0 +1,65 @@
+#include "app/serve.h"
+
+#include <fmt/format.h>
+
+#include <csignal>
+#include <cstdio>
+
+#include "hierarchy/auto_hierarchy.h"
+#include "run/prepared_solve.h"
+#include "run/write_outputs.h"
+#include "serve/session.h"
+#include "serve/shutdown.h"
+#include "serve/web_assets.h"
+
+namespace rad {
+
+int run_serve(const CommandLine& cmd) {
+  const RunOptions& run = cmd.run;
+  const OutputOptions& outputs = cmd.job.outputs;
+  auto say = [&](const std::string& s) {
+    if (run.quiet) return;
+    std::fputs((s + "\n").c_str(), stdout);
+    std::fflush(stdout);
+  };
+  check_output_names(outputs);
+  WebAssets assets = load_web_assets(default_web_modules_dir());
+
+  const SceneInput& in = cmd.job.input;
+  const Hierarchy hierarchy = load_hierarchy(in.path, in.model, in.hierarchy);
+  const PreparedSolve prepared(hierarchy, run);
+  SessionOptions so;
+  so.solver = run.solver;
+  so.ambient = outputs.ambient;
+  so.curve = outputs.tonemap;
+  so.exposure = outputs.exposure;
+  Session session(hierarchy, prepared.visibility(), so);
+  Server server(session, std::move(assets), cmd.server);
+  server.bind();
+  if (!is_loopback_host(cmd.server.host)) {
+    std::fprintf(stderr,
+                 "warning: serving on %s: anyone who can reach this address can see and edit "
+                 "the scene\n",
+                 cmd.server.host.c_str());
+  }
+  session.start();
+  server.start();
+  // The address goes out even with --quiet: it is what the user (or a test) needs.
+  std::printf("rad serve: %s (%zu triangles, %s backend); Ctrl-C stops%s\n", server.url().c_str(),
+              hierarchy.triangles.size(), to_string(run.backend),
+              outputs.mesh.empty() ? "" : fmt::format(" and writes {}", outputs.mesh).c_str());
+  std::fflush(stdout);
+
+  const int sig = wait_for_shutdown();
+  say(fmt::format("\nStopping ({})", sig == SIGTERM ? "SIGTERM" : "Ctrl-C"));
+  server.stop();
+  session.stop();
+
+  const auto snap = session.snapshot();
+  say(fmt::format("{} shots, unshot fraction {:.3e}, {} elements", snap->shots,
+                  snap->unshot_fraction, snap->elements));
+  write_outputs(snap->mesh, outputs, snap->tone, say);  // the exposure the page showed
+  return 0;
+}
+
+}  // namespace rad

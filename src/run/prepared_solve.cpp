@@ -1,0 +1,34 @@
+#include "run/prepared_solve.h"
+
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+#include <algorithm>
+#include <thread>
+
+#include "solver/ranks.h"
+
+namespace rad {
+
+int thread_count(int requested) {
+  if (requested > 0) return requested;
+  // A process bound to some cores (mpirun binds each rank) uses those; an unbound one shares
+  // the machine with the other ranks on it.
+  const int cores = tbb::info::default_concurrency();
+  if (cores < int(std::thread::hardware_concurrency())) return cores;
+  return std::max(1, cores / local_rank_count());
+}
+
+struct PreparedSolve::ThreadLimit {
+  tbb::global_control control;
+};
+
+PreparedSolve::PreparedSolve(const Hierarchy& h, const RunOptions& o)
+    : threads_(thread_count(o.threads)),
+      limit_(std::make_unique<ThreadLimit>(ThreadLimit{
+          tbb::global_control(tbb::global_control::max_allowed_parallelism, size_t(threads_))})),
+      visibility_(make_visibility_backend(o.backend, h, VisibilityOptions{o.packets})) {}
+
+PreparedSolve::~PreparedSolve() = default;
+
+}  // namespace rad

@@ -1,0 +1,46 @@
+// The options every way of running rad shares: how a scene is read, how it is solved, and what
+// is written from the solution. Each mode (app/cli.h) takes the sets it uses and refuses the rest.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "export/camera.h"
+#include "export/tonemap.h"
+#include "hierarchy/auto_hierarchy.h"
+#include "scene/model_scene.h"
+#include "solver/options.h"
+#include "visibility/backend.h"
+
+namespace rad {
+
+/// A scene file and how to read it: every mode.
+struct SceneInput {
+  std::string path;                        // a description (.des) or a model (.obj, .ply, ...)
+  ModelOptions model;                      // --emit rules for a model
+  std::optional<HierarchyMode> hierarchy;  // --hierarchy; none: default_hierarchy_mode
+};
+
+/// How a scene is solved: every mode that solves.
+struct RunOptions {
+  BackendKind backend = BackendKind::Embree;
+  bool packets = true;
+  int threads = 0;  // 0: the cores this process may use (see thread_count)
+  SolverOptions solver;
+  bool quiet = false;
+};
+
+/// What is written from a solution: the mesh, images, and how their colours are shown.
+struct OutputOptions {
+  std::string mesh;                 // empty: no mesh file
+  std::vector<std::string> images;  // .png, .hdr, .exr or .pfm
+  std::optional<Camera> camera;     // none: default_camera frames the scene
+  int image_width = 800, image_height = 800;
+  bool ascii = false;   // PLY as text
+  bool ambient = true;  // display colours include Cohen's ambient term
+  ToneCurve tonemap = ToneCurve::Clamp;
+  float exposure = 0.0f;  // stops added to the automatic exposure
+};
+
+}  // namespace rad

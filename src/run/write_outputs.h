@@ -1,0 +1,22 @@
+// The files written from one solved view, the same for every mode.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "export/output_mesh.h"
+#include "export/tonemap.h"
+#include "run/run_options.h"
+
+namespace rad {
+
+/// Refuses a mesh or image name whose extension no writer takes (before any work is done).
+/// Throws rad::Error.
+void check_output_names(const OutputOptions& o);
+
+/// Writes o.mesh and every o.images from `mesh`, shown with `tone`; images through o.camera
+/// (or default_camera) at o.image_width x o.image_height. `say` is told each file's name first.
+void write_outputs(const OutputMesh& mesh, const OutputOptions& o, const ToneMap& tone,
+                   const std::function<void(const std::string&)>& say);
+
+}  // namespace rad
