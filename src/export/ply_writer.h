@@ -1,4 +1,5 @@
-// PLY output: the contract other tools read (see README "Output").
+// PLY output: the contract other tools read (per-vertex linear radiosity and tone-mapped
+// display colour; the README's "Output" section documents the properties).
 #pragma once
 
 #include <ostream>

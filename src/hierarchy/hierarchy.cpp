@@ -195,6 +195,11 @@ Hierarchy build_hierarchy(const SceneDescription& scene, const BuildLimits& limi
   return h;
 }
 
+bool is_pure(const Hierarchy& h, int64_t object) {
+  return object >= 0 && size_t(object) < h.objects.size() &&
+         h.objects[size_t(object)].kind == ObjectKind::Pure;
+}
+
 std::string summarize(const Hierarchy& h) {
   size_t counts[3] = {0, 0, 0};
   size_t emitters = 0, emitting_triangles = 0;

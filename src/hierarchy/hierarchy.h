@@ -83,6 +83,9 @@ Hierarchy build_hierarchy(const SceneDescription& scene, const BuildLimits& limi
 /// Whether a shooter whose Pure has SceneObject::influence `influence` lights triangle t.
 bool influence_reaches(const Hierarchy& h, int32_t influence, uint32_t t);
 
+/// True when `object` is the index of a Pure: the objects that hold a material.
+bool is_pure(const Hierarchy& h, int64_t object);
+
 /// Counts per kind, triangles, emitters, bounds: the summary printed by `rad --check`.
 std::string summarize(const Hierarchy& h);
 

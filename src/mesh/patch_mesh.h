@@ -110,6 +110,19 @@ void for_each_leaf(const PolygonMesh& p, F&& f) {
   }
 }
 
+/// The integral over polygon `p` of a vertex quantity interpolated linearly over each leaf is
+/// the sum over leaves of area x (sum of its three vertices' values) / 3. Calls
+/// f(area, value(v0) + value(v1) + value(v2)) per leaf, in for_each_leaf's order; `f` does the
+/// multiply and accumulates in the precision it needs.
+template <typename Value, typename F>
+void for_each_leaf_vertex_sum(const PolygonMesh& p, Value&& value, F&& f) {
+  for_each_leaf(p, [&](uint32_t e) {
+    const Element& el = p.elements[e];
+    f(el.area,
+      value(p.vertices[el.v[0]]) + value(p.vertices[el.v[1]]) + value(p.vertices[el.v[2]]));
+  });
+}
+
 size_t count_vertices(const Mesh& m);
 size_t count_leaves(const Mesh& m);
 

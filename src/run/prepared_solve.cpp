@@ -19,14 +19,17 @@ int thread_count(int requested) {
   return std::max(1, cores / local_rank_count());
 }
 
+// Constructed in place: a global_control copied or moved is not registered with TBB, and the
+// original's destructor would lift the limit.
 struct PreparedSolve::ThreadLimit {
+  explicit ThreadLimit(size_t threads)
+      : control(tbb::global_control::max_allowed_parallelism, threads) {}
   tbb::global_control control;
 };
 
 PreparedSolve::PreparedSolve(const Hierarchy& h, const RunOptions& o)
     : threads_(thread_count(o.threads)),
-      limit_(std::make_unique<ThreadLimit>(ThreadLimit{
-          tbb::global_control(tbb::global_control::max_allowed_parallelism, size_t(threads_))})),
+      limit_(std::make_unique<ThreadLimit>(size_t(threads_))),
       visibility_(make_visibility_backend(o.backend, h, VisibilityOptions{o.packets})) {}
 
 PreparedSolve::~PreparedSolve() = default;

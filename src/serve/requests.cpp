@@ -76,7 +76,7 @@ MaterialRequest parse_material_request(std::string_view body, const Hierarchy& h
   MaterialRequest r;
   r.object = integer_field(j, "object", 0, int64_t(h.objects.size()) - 1);
   const SceneObject& o = h.objects[size_t(r.object)];
-  if (o.kind != ObjectKind::Pure) {
+  if (!is_pure(h, r.object)) {
     throw BadRequest(fmt::format("object {} ('{}') is {}: only Pures have a material", r.object,
                                  o.name, kind_name(o.kind)));
   }

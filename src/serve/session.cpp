@@ -67,8 +67,7 @@ bool Session::enqueue(Edit e) {
 }
 
 bool Session::edit_material(int32_t object, const MaterialPatch& patch) {
-  if (object < 0 || size_t(object) >= h_.objects.size() ||
-      h_.objects[size_t(object)].kind != ObjectKind::Pure) {
+  if (!is_pure(h_, object)) {
     throw Error(fmt::format("object {} is not a Pure", object));
   }
   std::lock_guard lock(mutex_);

@@ -24,7 +24,7 @@ enum class MidpointRule : uint8_t {
   Interpolate,
   /// Every new midpoint. rad splits faces through T-vertices when it writes them, so computed
   /// values there show no discontinuity either, and a peak between two equal ends is not missed
-  /// (measured: see README).
+  /// (interpolation misses a shadow or highlight that falls between two vertices).
   Exact,
 };
 
@@ -34,7 +34,7 @@ struct SolverOptions {
   /// least m that puts its samples no farther apart than the initial mesh's element size, or
   /// max_sample_grid when none in range does (the Cornell walls would want 13).
   /// Regular samples alias against occluders on a big source; measured on the Cornell box (walls
-  /// two triangles each), 16 samples everywhere left every surface ~0.9% too dark (see README).
+  /// two triangles each), 16 samples everywhere left every surface ~0.9% too dark.
   int sample_grid = 4;
   int max_sample_grid = 8;
   FormFactorMethod method = FormFactorMethod::Analytic;
@@ -59,11 +59,11 @@ struct SolverOptions {
   /// later by subdivision gathers them again exactly instead of interpolating their part from
   /// the edge's ends (0 keeps the original's pure interpolation). The first shots of the
   /// lights hold most of the energy and all the sharp shadows, so this is where interpolation
-  /// errors came from (measured: see README).
+  /// errors came from.
   double major_shot_fraction = 0.02;
   /// Overshooting (Feda, Purgathofer 1992): each shooter also shoots its share of the ambient
-  /// term and keeps it as negative unshot radiosity. Off by default (see README for the
-  /// measured effect).
+  /// term and keeps it as negative unshot radiosity. Off by default: it converges in fewer shots,
+  /// but subdivision then follows transient values, which costs accuracy.
   bool overshoot = false;
   int64_t max_shots = -1;   // < 0: no limit
   double time_limit = 0.0;  // seconds; <= 0: no limit

