@@ -1,10 +1,8 @@
 #include "solver/edits.h"
 
 #include <fmt/format.h>
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
-#include "core/denormals.h"
 #include "mesh/subdivide.h"
 #include "solver/refine.h"
 #include "solver/shoot.h"
@@ -58,18 +56,17 @@ size_t force_subdivide(SolverState& s, int32_t polygon, const VisibilityBackend&
     ++s.stats.subdivisions;
   }
   const GatherSettings settings = gather_settings(s);
-  tbb::enumerable_thread_specific<GatherScratch> scratch;
-  tbb::parallel_for(size_t(0), created.size(), [&](size_t i) {
-    const ScopedFlushDenormals ftz;  // as in shoot_to_receivers
-    const NewMidpoint& c = created[i];
-    MeshVertex& mid = m.vertices[c.vertex];
-    mid.irradiance = regather_shots(s, mid.position, uint32_t(polygon), false, vis, settings,
-                                    scratch.local(), &mid.major);
-    mid.unshot =
-        (m.vertices[c.a].unshot + m.vertices[c.b].unshot) * 0.5f;  // transient: interpolated
-    mid.shot = Vec3(0.0f);
+  parallel_gather(created.size(), 1, s.stats, [&](size_t begin, size_t end, GatherScratch& sc) {
+    for (size_t i = begin; i != end; ++i) {
+      const NewMidpoint& c = created[i];
+      MeshVertex& mid = m.vertices[c.vertex];
+      mid.irradiance =
+          regather_shots(s, mid.position, uint32_t(polygon), false, vis, settings, sc, &mid.major);
+      mid.unshot =
+          (m.vertices[c.a].unshot + m.vertices[c.b].unshot) * 0.5f;  // transient: interpolated
+      mid.shot = Vec3(0.0f);
+    }
   });
-  for (const GatherScratch& sc : scratch) s.stats += sc.stats;
   s.stats.exact_midpoints += created.size();
   s.unshot_energy[size_t(polygon)] = polygon_unshot_energy(m);
   update_unshot_totals(s);

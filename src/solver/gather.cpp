@@ -1,10 +1,14 @@
 #include "solver/gather.h"
 
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cstring>
 #include <numbers>
 #include <span>
 
+#include "core/denormals.h"
 #include "solver/form_factor.h"
 
 namespace rad {
@@ -213,6 +217,16 @@ Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroi
     if (!scratch.blocked[j]) visible += sm.value(scratch.active[j]) * k[scratch.active[j]];
   }
   return visible * scale;
+}
+
+void parallel_gather(size_t n, size_t grain, SolverStats& stats,
+                     const std::function<void(size_t, size_t, GatherScratch&)>& body) {
+  tbb::enumerable_thread_specific<GatherScratch> scratch;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, grain), [&](const auto& range) {
+    const ScopedFlushDenormals ftz;  // once per chunk, not per ray batch (see denormals.h)
+    body(range.begin(), range.end(), scratch.local());
+  });
+  for (const GatherScratch& sc : scratch) stats += sc.stats;
 }
 
 }  // namespace rad

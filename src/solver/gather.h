@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "solver/shot_source.h"
@@ -40,5 +41,12 @@ int receiver_side(const ShotSource& src, const Vec3& x);
 Vec3 gather_from_source(const Vec3& x, const Vec3& n, const Vec3& centroid, const ShotSource& src,
                         const VisibilityBackend& vis, const GatherSettings& settings,
                         GatherScratch& scratch);
+
+/// The frame of every parallel gathering loop: body(begin, end, scratch) over [0, n) in chunks
+/// of about `grain`, each chunk on one thread with denormals flushed (core/denormals.h) and that
+/// thread's scratch; then every thread's counters are added to `stats`. One call per chunk, none
+/// per vertex or ray.
+void parallel_gather(size_t n, size_t grain, SolverStats& stats,
+                     const std::function<void(size_t, size_t, GatherScratch&)>& body);
 
 }  // namespace rad

@@ -1,9 +1,7 @@
 #include "solver/refine.h"
 
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
-#include "core/denormals.h"
 #include "mesh/subdivide.h"
 #include "solver/shoot.h"
 
@@ -58,7 +56,6 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
   });
 
   std::vector<ExactVertex> flat;
-  tbb::enumerable_thread_specific<GatherScratch> scratch;
   for (bool any = true; any;) {
     // 1. Split what needs it; interpolated midpoints get their values now (their ends are
     //    final: only vertices of elements checked in this pass are ends).
@@ -106,10 +103,8 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
     // 2. Compute the current shot exactly at the midpoints of edges beyond the limit.
     flat.clear();
     for (size_t i = 0; i < np; ++i) flat.insert(flat.end(), exact[i].begin(), exact[i].end());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, flat.size(), 16), [&](const auto& range) {
-      const ScopedFlushDenormals ftz;  // as in shoot_to_receivers
-      GatherScratch& sc = scratch.local();
-      for (size_t i = range.begin(); i != range.end(); ++i) {
+    parallel_gather(flat.size(), 16, s.stats, [&](size_t begin, size_t end, GatherScratch& sc) {
+      for (size_t i = begin; i != end; ++i) {
         const ExactVertex& x = flat[i];
         PolygonMesh& m = s.mesh.polygons[x.polygon];
         const Vec3 rho = s.material_of(x.polygon).reflectance;
@@ -155,7 +150,6 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
     s.stats.subdivisions += splits[i];
     s.stats.interpolated_midpoints += interpolated[i];
   }
-  for (const GatherScratch& sc : scratch) s.stats += sc.stats;
 }
 
 }  // namespace rad

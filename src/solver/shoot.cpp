@@ -1,9 +1,6 @@
 #include "solver/shoot.h"
 
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-
-#include "core/denormals.h"
 
 namespace rad {
 
@@ -72,35 +69,31 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
     return shared.copies_gain(uint32_t(p), uint32_t(v)) &&
            received[shared.polygon[shared.canonical[shared.first[p] + v]]];
   };
-  tbb::enumerable_thread_specific<GatherScratch> scratch;
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, receivers.size(), 8), [&](const auto& range) {
-    const ScopedFlushDenormals ftz;  // once per range, not per ray batch (see denormals.h)
-    for (size_t i = range.begin(); i != range.end(); ++i) {
-      const size_t p = receivers[i];
+  // Work items: a polygon's vertices, or 64 of them for a finely subdivided one, so its
+  // vertices spread across threads too.
+  std::vector<VertexRange>& work = s.gather_work;
+  work.clear();
+  for (const uint32_t p : receivers) {
+    const uint32_t nv = uint32_t(s.mesh.polygons[p].vertex_count());
+    const uint32_t step = nv < 256 ? nv : 64;
+    for (uint32_t v = 0; v < nv; v += step) work.push_back({p, v, std::min(nv, v + step)});
+  }
+  parallel_gather(work.size(), 8, s.stats, [&](size_t begin, size_t end, GatherScratch& sc) {
+    for (size_t i = begin; i != end; ++i) {
+      const VertexRange& w = work[i];
+      const uint32_t p = w.polygon;
       PolygonMesh& mesh = s.mesh.polygons[p];
       const Vec3 n = tris.normal[p], centroid = tris.centroid(p);
       const Vec3 rho = s.material_of(p).reflectance;
       const GatherSettings own = receiver_settings(settings, s, p);
-      auto body = [&](size_t v0, size_t v1) {
-        GatherScratch& sc = scratch.local();
-        for (size_t v = v0; v < v1; ++v) {
-          if (copied(p, v)) continue;
-          MeshVertex& x = mesh.vertices[v];
-          const Vec3 dh = gather_from_source(x.position, n, centroid, src, vis, own, sc);
-          x.irradiance += dh;
-          x.unshot += rho * dh;
-          x.shot = dh;
-          if (major) x.major += dh;
-        }
-      };
-      const size_t nv = mesh.vertex_count();
-      if (nv < 256) {
-        body(0, nv);
-      } else {  // a finely subdivided polygon: split its vertices across threads too
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, nv, 64), [&](const auto& r) {
-          const ScopedFlushDenormals inner;  // another thread may run this range
-          body(r.begin(), r.end());
-        });
+      for (size_t v = w.begin; v < w.end; ++v) {
+        if (copied(p, v)) continue;
+        MeshVertex& x = mesh.vertices[v];
+        const Vec3 dh = gather_from_source(x.position, n, centroid, src, vis, own, sc);
+        x.irradiance += dh;
+        x.unshot += rho * dh;
+        x.shot = dh;
+        if (major) x.major += dh;
       }
     }
   });
@@ -121,7 +114,6 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
       if (major) x.major += dh;
     }
   });
-  for (const GatherScratch& sc : scratch) s.stats += sc.stats;
 }
 
 }  // namespace rad

@@ -53,6 +53,11 @@ struct SharedVertices {
 
 class Ranks;
 
+/// Vertices [begin, end) of one polygon: a work item of a shot's gathering loop.
+struct VertexRange {
+  uint32_t polygon = 0, begin = 0, end = 0;
+};
+
 __extension__ typedef __int128 Fixed128;  // GCC's and clang's 128-bit integer
 
 struct SolverState {
@@ -94,6 +99,7 @@ struct SolverState {
   /// in index order (shoot_to_receivers; kept between shots so a small shot costs little).
   std::vector<uint8_t> received;
   std::vector<uint32_t> receivers;
+  std::vector<VertexRange> gather_work;  // the receivers' vertices in work items (shoot.cpp)
   /// Under MPI (solver/distribute.h): the ranks solving together, the owner of each cluster and
   /// which polygons are this rank's. One process: null and empty, every polygon its own.
   Ranks* ranks = nullptr;
