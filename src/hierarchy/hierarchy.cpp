@@ -170,6 +170,15 @@ Hierarchy build_hierarchy(const SceneDescription& scene, const BuildLimits& limi
   h.scene_name = scene.name;
   h.source_path = scene.path;
   Builder b{scene, h, limits};
+  // The triangles as written (copies place more): one allocation for a model of a million.
+  size_t written = 0;
+  for (const ObjectDescription& o : scene.objects) written += o.triangles.size();
+  written = std::min(written, size_t(limits.max_triangles));
+  h.triangles.corners.reserve(written);
+  h.triangles.normal.reserve(written);
+  h.triangles.area.reserve(written);
+  h.triangles.object.reserve(written);
+  h.objects.reserve(scene.objects.size());
   for (int32_t r : scene.roots) {
     int32_t id = b.add(r, -1, glm::dmat4(1.0), 0);
     h.roots.push_back(id);
