@@ -2,6 +2,7 @@
 
 #include <fnmatch.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -24,7 +25,7 @@ EmitRule parse_emit_rule(const std::string& text) {
   return r;
 }
 
-SceneDescription model_to_scene(const Model& m, const ModelOptions& o) {
+SceneDescription model_to_scene(Model m, const ModelOptions& o) {
   std::vector<Material> materials;
   std::vector<size_t> rule_uses(o.emit.size(), 0);
   for (const ModelMaterial& mm : m.materials) {
@@ -63,7 +64,7 @@ SceneDescription model_to_scene(const Model& m, const ModelOptions& o) {
   d.objects.push_back(root);
   d.roots.push_back(0);
   bool emits = false;
-  for (const ModelGroup& g : m.groups) {
+  for (ModelGroup& g : m.groups) {
     const int32_t composite = int32_t(d.objects.size());
     ObjectDescription group;
     group.name = g.name;
@@ -86,6 +87,13 @@ SceneDescription model_to_scene(const Model& m, const ModelOptions& o) {
         d.objects.push_back(std::move(p));
       }
       ObjectDescription& p = d.objects[size_t(pure_of[k])];
+      // A group of one material (the usual case) hands its triangles over whole.
+      if (t == 0 &&
+          std::all_of(g.material.begin(), g.material.end(), [&](uint32_t x) { return x == k; })) {
+        p.triangles = std::move(g.triangles);
+        p.triangle_locs = std::move(g.triangle_locs);
+        break;
+      }
       p.triangles.push_back(g.triangles[t]);
       if (!g.triangle_locs.empty()) p.triangle_locs.push_back(g.triangle_locs[t]);
     }

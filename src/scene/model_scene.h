@@ -31,6 +31,6 @@ struct ModelOptions {
 /// per material) and emission (the rules override the file's). Throws rad::Error naming the
 /// --emit option when nothing emits (unless !require_emission), or when a rule matches no
 /// material.
-SceneDescription model_to_scene(const Model& m, const ModelOptions& o);
+SceneDescription model_to_scene(Model m, const ModelOptions& o);
 
 }  // namespace rad

@@ -113,6 +113,8 @@ Model parse_obj_text(std::string_view obj, std::string_view mtl, const std::stri
     ModelGroup g;
     g.name = shape.name.empty() ? "unnamed" : shape.name;
     const tinyobj::mesh_t& mesh = shape.mesh;
+    g.triangles.reserve(mesh.num_face_vertices.size());
+    g.material.reserve(mesh.num_face_vertices.size());
     size_t at = 0;
     for (size_t f = 0; f < mesh.num_face_vertices.size(); ++f) {
       const size_t n = mesh.num_face_vertices[f];
