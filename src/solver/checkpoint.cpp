@@ -139,6 +139,7 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   s.materials = std::move(materials);
   s.unshot_energy = std::move(unshot_energy);
   s.emitted_energy = emitted, s.absorbed_energy = absorbed, s.shots = shots, s.stats = stats;
+  s.reference_energy = emitted;  // a checkpoint is of a run without edits
   s.history = std::move(history);
   s.shot_log = std::move(log);
   update_unshot_totals(s);

@@ -11,8 +11,7 @@ namespace rad {
 
 void set_material(SolverState& s, int32_t object, const Material& m, const VisibilityBackend& vis) {
   const Hierarchy& h = *s.hierarchy;
-  if (object < 0 || size_t(object) >= h.objects.size() ||
-      h.objects[size_t(object)].kind != ObjectKind::Pure) {
+  if (!is_pure(h, object)) {
     throw Error(fmt::format("object {} is not a Pure", object));
   }
   for (int k = 0; k < 3; ++k) {
@@ -31,6 +30,7 @@ void set_material(SolverState& s, int32_t object, const Material& m, const Visib
     s.emitted_energy += double(h.triangles.area[t]) * double(mean_component(d_e));
     s.unshot_energy[t] = polygon_unshot_energy(p);
   }
+  s.reference_energy = std::max(s.reference_energy, s.emitted_energy);
   // Where the new radiosity varies beyond the limit (a surface that was black was never
   // subdivided), refine now, exactly.
   std::vector<uint32_t> which;

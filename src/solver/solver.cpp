@@ -59,7 +59,7 @@ ShotSource freeze_source(SolverState& s, size_t c, double energy) {
   set_unshot_energies(s, {k.polygons.data() + k.first[c], left.size()}, left);
 
   src.major = s.options.major_shot_fraction > 0.0 &&
-              energy >= s.options.major_shot_fraction * s.emitted_energy;
+              energy >= s.options.major_shot_fraction * s.reference_energy;
   return src;
 }
 

@@ -48,7 +48,7 @@ namespace {
 // emitted energies (an edit may leave the emission near zero and the unshot energy not), so 2^26
 // polygons of them still sum within 128 bits.
 double fixed_scale(const SolverState& s) {
-  return std::ldexp(1.0, 64) / (s.emitted_energy > 0.0 ? s.emitted_energy : 1.0);
+  return std::ldexp(1.0, 64) / (s.reference_energy > 0.0 ? s.reference_energy : 1.0);
 }
 Fixed128 to_fixed(double e, double scale) {
   const double most = std::ldexp(1.0, 100);
@@ -216,6 +216,7 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
     s.emitted_energy += s.unshot_energy[t];
     total_area += h.triangles.area[t];
   }
+  s.reference_energy = s.emitted_energy;
   s.total_area = total_area;
   s.radiosity_scale = total_area > 0.0 ? float(s.emitted_energy / total_area) : 1.0f;
   if (!(s.radiosity_scale > 0.0f)) s.radiosity_scale = 1.0f;

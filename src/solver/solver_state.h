@@ -73,7 +73,11 @@ struct SolverState {
   /// Negative after an edit lowers an emission or a reflectance (Chen 1990): shooter choice and
   /// convergence use its absolute value.
   std::vector<double> unshot_energy;
-  double emitted_energy = 0.0;   // sum of area x mean-channel emission
+  double emitted_energy = 0.0;  // sum of area x mean-channel emission
+  /// What the unshot fraction and the fixed-point totals are relative to: the emitted energy,
+  /// or the most an edit ever raised it to. Turning every light off leaves no emission (or a
+  /// rounding leftover of either sign), yet their light must still be shot back out.
+  double reference_energy = 0.0;
   double absorbed_energy = 0.0;  // sum over shots of received energy not reflected
   float radiosity_scale = 1.0f;  // emitted power / total area: what relative limits scale by
   double total_area = 0.0;
@@ -118,7 +122,7 @@ struct SolverState {
     return m.emission + m.reflectance * mesh.polygons[p].vertices[v].irradiance;
   }
   double unshot_fraction() const {
-    return emitted_energy > 0.0 ? unshot_abs_total / emitted_energy : 0.0;
+    return reference_energy > 0.0 ? unshot_abs_total / reference_energy : 0.0;
   }
 };
 

@@ -96,6 +96,29 @@ TEST(Edits, DimmingALightShootsNegativeEnergyAndConverges) {
   EXPECT_LE(edit_then_continue("lamp", {Vec3(0.5f), dimmer}, dimmer, kLeft, kBlack), 0.005);
 }
 
+TEST(Edits, TurningTheOnlyLightOffShootsItsLightBackOutToDarkness) {
+  // Nothing emits afterwards, so the emitted energy is zero (or a rounding leftover of either
+  // sign): convergence must be judged against the energy there was, or the negative energy is
+  // never shot (a negative leftover reads as converged) or shot forever (a tiny positive one).
+  const Hierarchy h = build_hierarchy(edit_scene(kLamp, kLeft, kBlack));
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  SolverState s = make_solver_state(h, options());
+  solve(s, *vis);
+  double lit = 0.0;
+  for (size_t p = 0; p < s.mesh.polygons.size(); ++p) lit += mean_component(s.radiosity(p, 0));
+  ASSERT_GT(lit, 0.0);
+  const int64_t shots_before = s.shots;
+  set_material(s, object_named(h, "lamp"), {Vec3(0.5f), Vec3(0.0f)}, *vis);
+  EXPECT_GT(s.unshot_fraction(), options().converge) << "the edit must leave work to do";
+  EXPECT_EQ(solve(s, *vis), StopReason::Converged);
+  EXPECT_GT(s.shots, shots_before);
+  EXPECT_LT(s.shots, shots_before + 2000) << "converges, not shooting rounding leftovers";
+  double left = 0.0;
+  for (size_t p = 0; p < s.mesh.polygons.size(); ++p)
+    left += std::abs(mean_component(s.radiosity(p, 0)));
+  EXPECT_LT(left, 0.01 * lit) << "the scene goes dark";
+}
+
 TEST(Edits, ChangingAColourConvergesToAFreshSolve) {
   const Vec3 green(0.2f, 0.7f, 0.3f);
   EXPECT_LE(edit_then_continue("left", {green, Vec3(0)}, kLamp, green, kBlack), 0.005);
