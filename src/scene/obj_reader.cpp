@@ -156,10 +156,10 @@ Model read_obj_file(const std::string& path, const SourceLoc& requested_at) {
   int number = 0;
   for (size_t at = 0; at < text.size(); at = std::min(text.find('\n', at), text.size()) + 1) {
     ++number;
-    if (text.compare(at, 6, "mtllib") != 0 || at + 6 >= text.size() ||
-        !std::isspace(static_cast<unsigned char>(text[at + 6])))
-      continue;
     const std::string_view line = text.substr(at, text.find('\n', at) - at);
+    if (line.size() < 7 || line.compare(0, 6, "mtllib") != 0 ||
+        !std::isspace(static_cast<unsigned char>(line[6])))
+      continue;
     std::istringstream names{std::string(line.substr(7))};
     for (std::string name; names >> name;) {
       const fs::path p = folder / name;

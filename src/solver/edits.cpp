@@ -30,7 +30,9 @@ void set_material(SolverState& s, int32_t object, const Material& m, const Visib
     s.emitted_energy += double(h.triangles.area[t]) * double(mean_component(d_e));
     s.unshot_energy[t] = polygon_unshot_energy(p);
   }
-  s.reference_energy = std::max(s.reference_energy, s.emitted_energy);
+  // Convergence follows the new emission, as a fresh solve's would, unless the edit left next
+  // to none: then the light there was is what must be shot back out.
+  if (s.emitted_energy > 1e-6 * s.reference_energy) s.reference_energy = s.emitted_energy;
   // Where the new radiosity varies beyond the limit (a surface that was black was never
   // subdivided), refine now, exactly.
   std::vector<uint32_t> which;

@@ -78,7 +78,7 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
     const uint32_t step = nv < 256 ? nv : 64;
     for (uint32_t v = 0; v < nv; v += step) work.push_back({p, v, std::min(nv, v + step)});
   }
-  parallel_gather(work.size(), 8, s.stats, [&](size_t begin, size_t end, GatherScratch& sc) {
+  parallel_gather(work.size(), 1, s.stats, [&](size_t begin, size_t end, GatherScratch& sc) {
     for (size_t i = begin; i != end; ++i) {
       const VertexRange& w = work[i];
       const uint32_t p = w.polygon;

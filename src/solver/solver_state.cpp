@@ -44,9 +44,9 @@ bool SolverState::owns_cluster(size_t c) const {
 }
 
 namespace {
-// The fixed-point unit: 2^-64 of the emitted energy. A polygon's energy is clamped to 2^36
-// emitted energies (an edit may leave the emission near zero and the unshot energy not), so 2^26
-// polygons of them still sum within 128 bits.
+// The fixed-point unit: 2^-64 of the reference energy (the emitted energy, see solver_state.h). A
+// polygon's energy is clamped to 2^36 emitted energies (an edit may leave the emission near zero
+// and the unshot energy not), so 2^26 polygons of them still sum within 128 bits.
 double fixed_scale(const SolverState& s) {
   return std::ldexp(1.0, 64) / (s.reference_energy > 0.0 ? s.reference_energy : 1.0);
 }

@@ -75,8 +75,9 @@ struct SolverState {
   std::vector<double> unshot_energy;
   double emitted_energy = 0.0;  // sum of area x mean-channel emission
   /// What the unshot fraction and the fixed-point totals are relative to: the emitted energy,
-  /// or the most an edit ever raised it to. Turning every light off leaves no emission (or a
-  /// rounding leftover of either sign), yet their light must still be shot back out.
+  /// or, after an edit that left next to no emission, the emitted energy before it. Turning
+  /// every light off leaves none (or a rounding leftover of either sign), yet their light must
+  /// still be shot back out.
   double reference_energy = 0.0;
   double absorbed_energy = 0.0;  // sum over shots of received energy not reflected
   float radiosity_scale = 1.0f;  // emitted power / total area: what relative limits scale by

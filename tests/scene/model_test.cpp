@@ -130,6 +130,20 @@ TEST_F(ModelFiles, ObjEmissionComesFromKeAndAMissingLibraryIsAWarning) {
   EXPECT_EQ(d.objects[2].material.emission, Vec3(3, 2, 1));
 }
 
+TEST_F(ModelFiles, ObjMaterialLibrariesAreFoundOnAnyLineEvenBareOrLastOrCrlf) {
+  // A bare `mtllib` names nothing; the library may be on the last line (no line end) or on a
+  // CRLF line.
+  write("last.mtl", "newmtl Light\nKd 0 0 0\nKe 3 2 1\n");
+  const std::string last = write("last.obj",
+                                 "mtllib\nmtllib \nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl Light\n"
+                                 "f 1 2 3\nmtllib last.mtl");
+  EXPECT_EQ(read_scene_file(last).objects[2].material.emission, Vec3(3, 2, 1));
+  const std::string crlf = write("crlf.obj",
+                                 "mtllib last.mtl\r\nv 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\n"
+                                 "usemtl Light\r\nf 1 2 3\r\n");
+  EXPECT_EQ(read_scene_file(crlf).objects[2].material.emission, Vec3(3, 2, 1));
+}
+
 TEST_F(ModelFiles, BadObjFilesEndInOneError) {
   for (const char* bad : {"v 0 0 0\nv 1 0 0\nf 1 2 7\n", "v 0 0 0\nv 1 0 0\nv 1e39 0 0\nf 1 2 3\n",
                           "v 1 2 3\n", "", "f -5 -6 -7\n"}) {
