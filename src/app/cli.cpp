@@ -221,6 +221,31 @@ const char* const kHierarchyHelp =
     "Composites and Assemblies of what is near) or flat (one Composite); default auto for "
     "models, file for descriptions";
 
+// What every solving mode registers: the solve, how the solution is shown, how the scene is
+// read, --quiet, and (for a mode whose solve has an end) --max-memory.
+struct SolvingMode {
+  Solving solving;
+  Showing showing;
+  SceneReading reading;
+  std::string max_memory;
+  bool memory_limit = false;
+
+  void add_to(CLI::App& app, CommandLine& c, bool time_limit, bool images, bool memory) {
+    solving.add_to(app, c.run, time_limit);
+    showing.add_to(app, c.job.outputs, images);
+    reading.add_to(app, kEmitHelp, kHierarchyHelp);
+    memory_limit = memory;
+    if (memory_limit) add_max_memory(app, max_memory);
+    app.add_flag("-q,--quiet", c.run.quiet, "Print errors only");
+  }
+  void apply(CommandLine& c) const {
+    solving.apply(c.run);
+    showing.apply(c.job.outputs);
+    reading.apply(c.job.input);
+    if (memory_limit) apply_max_memory(max_memory, c.job.max_memory);
+  }
+};
+
 // Parses `args` with `app` (whose options are bound to `c`), then runs `apply` on `c`; prints
 // and returns nothing on a usage error.
 template <class Apply>
@@ -268,7 +293,7 @@ std::optional<CommandLine> parse_batch(std::vector<std::string> args, int* exit_
   CommandLine c;
   c.mode = Mode::Batch;
   CLI::App app{std::string(kOverview), "rad batch"};
-  std::string formats = "ply,png", shard, max_memory;
+  std::string formats = "ply,png", shard;
   app.add_option("outdir", c.batch.dir, "Folder for every scene's outputs and stats")->required();
   app.add_option("scenes", c.batch.scenes, "Scene files, or .txt files listing them")->required();
   app.add_option("--formats", formats,
@@ -279,21 +304,12 @@ std::optional<CommandLine> parse_batch(std::vector<std::string> args, int* exit_
                  "Solve this process's share of the list: I/N takes scenes I, I + N, I + 2N, "
                  "... (0 <= I < N); 'slurm' takes I and N from the Slurm job array "
                  "(SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN, SLURM_ARRAY_TASK_COUNT)");
-  Solving solving;
-  solving.add_to(app, c.run, /*time_limit=*/true);
-  Showing showing;
-  showing.add_to(app, c.job.outputs, /*images=*/false);
-  SceneReading reading;
-  reading.add_to(app, kEmitHelp, kHierarchyHelp);
-  add_max_memory(app, max_memory);
-  app.add_flag("-q,--quiet", c.run.quiet, "Print errors only");
+  SolvingMode solving;
+  solving.add_to(app, c, /*time_limit=*/true, /*images=*/false, /*memory=*/true);
   return parse_with(
       app, std::move(args), c,
       [&](CommandLine& r) {
-        solving.apply(r.run);
-        showing.apply(r.job.outputs);
-        reading.apply(r.job.input);
-        apply_max_memory(max_memory, r.job.max_memory);
+        solving.apply(r);
         if (!shard.empty()) {
           try {
             parse_shard(shard, &r.batch.shard_index, &r.batch.shard_count);
@@ -327,21 +343,10 @@ std::optional<CommandLine> parse_serve(std::vector<std::string> args, int* exit_
       ->capture_default_str();
   app.add_option("--output", c.job.outputs.mesh,
                  "Mesh written when the server stops (.ply, .off, .obj, .gltf, .glb)");
-  Solving solving;
-  solving.add_to(app, c.run, /*time_limit=*/false);
-  Showing showing;
-  showing.add_to(app, c.job.outputs, /*images=*/true);
-  SceneReading reading;
-  reading.add_to(app, kEmitHelp, kHierarchyHelp);
-  app.add_flag("-q,--quiet", c.run.quiet, "Print errors only");
+  SolvingMode solving;
+  solving.add_to(app, c, /*time_limit=*/false, /*images=*/true, /*memory=*/false);
   return parse_with(
-      app, std::move(args), c,
-      [&](CommandLine& r) {
-        solving.apply(r.run);
-        showing.apply(r.job.outputs);
-        reading.apply(r.job.input);
-      },
-      exit_code);
+      app, std::move(args), c, [&](CommandLine& r) { solving.apply(r); }, exit_code);
 }
 
 // rad [options] SCENE OUTPUT, and its --check and --cross-check.
@@ -354,14 +359,12 @@ std::optional<CommandLine> parse_solve(std::vector<std::string> args, int* exit_
                  "Output mesh (.ply, .off, .gfo (COFF), .obj, .gltf or .glb)");
   bool check = false;
   app.add_flag("--check", check, "Parse and validate the scene, print a summary, do not solve");
-  std::string cross_check, max_memory;
+  std::string cross_check;
   app.add_option("--cross-check", cross_check,
                  "Solve with --backend and this backend too, compare their rays against brute "
                  "force and their vertices and radiosity; exit 1 if they disagree");
-  Solving solving;
-  solving.add_to(app, c.run, /*time_limit=*/true);
-  Showing showing;
-  showing.add_to(app, c.job.outputs, /*images=*/true);
+  SolvingMode solving;
+  solving.add_to(app, c, /*time_limit=*/true, /*images=*/true, /*memory=*/true);
   app.add_option("--stats-json", c.job.stats_json, "Write run statistics as JSON to this file");
   app.add_option("--checkpoint", c.job.checkpoint,
                  "Save the solver state to this file (every --checkpoint-every seconds, when "
@@ -370,17 +373,10 @@ std::optional<CommandLine> parse_solve(std::vector<std::string> args, int* exit_
                  "Seconds between checkpoints (0: after every shot)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  SceneReading reading;
-  reading.add_to(app, kEmitHelp, kHierarchyHelp);
-  add_max_memory(app, max_memory);
-  app.add_flag("-q,--quiet", c.run.quiet, "Print errors only");
   return parse_with(
       app, std::move(args), c,
       [&](CommandLine& r) {
-        solving.apply(r.run);
-        showing.apply(r.job.outputs);
-        reading.apply(r.job.input);
-        apply_max_memory(max_memory, r.job.max_memory);
+        solving.apply(r);
         if (check) r.mode = Mode::Check;
         if (!cross_check.empty()) {
           if (check) {
