@@ -5,6 +5,7 @@
 #include "visibility/brute_backend.h"
 #include "visibility/embree_backend.h"
 #include "visibility/grid_backend.h"
+#include "visibility/occluders.h"
 
 namespace rad {
 
@@ -30,13 +31,17 @@ BackendKind parse_backend_kind(std::string_view name) {
 
 std::unique_ptr<VisibilityBackend> make_visibility_backend(BackendKind kind, const Hierarchy& h,
                                                            const VisibilityOptions& options) {
+  // Every backend traces against the same merged surfaces (none keeps the hierarchy after
+  // its build), so they agree as before, and a tessellated wall costs them what the wall does.
+  const std::optional<Hierarchy> merged = merge_flat_regions(h);
+  const Hierarchy& occluders = merged ? *merged : h;
   switch (kind) {
     case BackendKind::Embree:
-      return make_embree_backend(h, options);
+      return make_embree_backend(occluders, options);
     case BackendKind::Grid:
-      return make_grid_backend(h, options);
+      return make_grid_backend(occluders, options);
     case BackendKind::Brute:
-      return make_brute_backend(h, options);
+      return make_brute_backend(occluders, options);
   }
   throw Error("unknown visibility backend");
 }
