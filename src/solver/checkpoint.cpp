@@ -20,7 +20,7 @@ namespace {
 // Layout: magic, format, fingerprint, payload size, payload checksum, payload. Native byte
 // order and float layout: a checkpoint resumes on the machine kind that wrote it.
 constexpr char kMagic[8] = {'R', 'A', 'D', 'C', 'K', 'P', 'T', '\n'};
-constexpr uint32_t kFormat = 1;
+constexpr uint32_t kFormat = 2;  // 2: vertices shared by copy
 constexpr size_t kHeader = sizeof kMagic + sizeof(uint32_t) + 3 * sizeof(uint64_t);
 
 struct HistoryRecord {
@@ -58,7 +58,8 @@ void write_checkpoint(const std::string& path, const SolverState& s, uint64_t fi
   static_assert(std::is_trivially_copyable_v<SolverStats>);
   ByteWriter w;
   w.pod(uint64_t(s.mesh.polygons.size()));
-  for (const PolygonMesh& p : s.mesh.polygons) write_polygon(w, p);
+  for (size_t p = 0; p < s.mesh.polygons.size(); ++p)
+    write_polygon(w, s.mesh.polygons[p], s.shared.copies[p]);
   w.vec(s.materials);
   w.vec(s.unshot_energy);
   w.pod(s.emitted_energy), w.pod(s.absorbed_energy), w.pod(s.shots), w.pod(s.stats);
@@ -110,9 +111,17 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   // Read everything into a copy, so a failure leaves `s` as it was.
   ByteReader r(data, kHeader, path, "checkpoint");
   if (r.pod<uint64_t>() != s.mesh.polygons.size()) r.fail("another number of polygons");
+  const size_t np = s.mesh.polygons.size();
   Mesh mesh;
-  mesh.polygons.resize(s.mesh.polygons.size());
-  for (PolygonMesh& p : mesh.polygons) read_polygon(r, p);
+  mesh.polygons.resize(np);
+  std::vector<std::vector<VertexCopy>> copies(np);
+  for (size_t p = 0; p < np; ++p) read_polygon(r, mesh.polygons[p], copies[p], np);
+  for (const std::vector<VertexCopy>& cs : copies) {
+    for (const VertexCopy& c : cs) {
+      if (c.from_vertex >= mesh.polygons[c.from_polygon].vertex_count())
+        r.fail("a vertex copied from no vertex");
+    }
+  }
   std::vector<Material> materials;
   std::vector<double> unshot_energy;
   r.vec(materials);
@@ -135,7 +144,11 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   if (!r.done()) r.fail("trailing bytes");
   if (shots < 0 || uint64_t(shots) != logged) r.fail("shot count differs from the shot log");
 
+  std::vector<uint32_t> initial(np);
+  for (size_t p = 0; p < np; ++p) initial[p] = uint32_t(s.mesh.polygons[p].vertex_count());
   s.mesh = std::move(mesh);
+  s.shared.copies = std::move(copies);
+  find_edge_midpoints(s, initial);
   s.materials = std::move(materials);
   s.unshot_energy = std::move(unshot_energy);
   s.emitted_energy = emitted, s.absorbed_energy = absorbed, s.shots = shots, s.stats = stats;

@@ -2,6 +2,9 @@
 
 #include <tbb/parallel_for.h>
 
+#include <array>
+#include <tuple>
+
 #include "mesh/subdivide.h"
 #include "solver/shoot.h"
 
@@ -11,6 +14,16 @@ namespace {
 
 struct ExactVertex {
   uint32_t polygon, vertex, a, b;
+  // A vertex shared with another polygon's (solver_state.h) copies it instead of gathering.
+  int64_t from_polygon = -1;
+  uint32_t from_vertex = 0;
+};
+
+// A new midpoint on polygon p's own edges, where the neighbour across may make the same one;
+// `exact`: its index in the pass's exact list, or -1.
+struct EdgeMidpoint {
+  uint32_t vertex;
+  int64_t exact;
 };
 
 }  // namespace
@@ -50,6 +63,10 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
 
   std::vector<std::vector<uint32_t>> check(np), next(np);
   std::vector<std::vector<ExactVertex>> exact(np);
+  std::vector<std::vector<EdgeMidpoint>> on_edges(np);
+  SharedVertices& shared = s.shared;
+  // Copies take the current shot's state from a vertex that has it: only after a shot.
+  const bool may_copy = src != nullptr && all_exact;
   std::vector<uint64_t> splits(np, 0), interpolated(np, 0);
   tbb::parallel_for(size_t(0), np, [&](size_t i) {
     for_each_leaf(s.mesh.polygons[polygons[i]], [&](uint32_t e) { check[i].push_back(e); });
@@ -63,8 +80,10 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
       for (size_t i = range.begin(); i != range.end(); ++i) {
         next[i].clear();
         exact[i].clear();
+        on_edges[i].clear();
         if (check[i].empty()) continue;
         const uint32_t p = polygons[i];
+        const bool sharing = bool(shared_place(s.clusters, p, Vec3(0.0f)));
         PolygonMesh& m = s.mesh.polygons[p];
         const Material& mat = s.material_of(p);
         auto B = [&](uint32_t v) {
@@ -83,7 +102,11 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
           ++splits[i];
           for (int k = 0; k < n; ++k) {
             const NewMidpoint& c = created[k];
-            if (all_exact || exact_edge[index_of(c.a)][index_of(c.b)]) {
+            const bool computed = all_exact || exact_edge[index_of(c.a)][index_of(c.b)];
+            if (sharing && on_triangle_edge(tris.corners[p], m.vertices[c.vertex].position)) {
+              on_edges[i].push_back({c.vertex, computed ? int64_t(exact[i].size()) : -1});
+            }
+            if (computed) {
               exact[i].push_back({p, c.vertex, c.a, c.b});
             } else {
               const MeshVertex &a = m.vertices[c.a], &b = m.vertices[c.b];
@@ -100,12 +123,35 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
         }
       }
     });
-    // 2. Compute the current shot exactly at the midpoints of edges beyond the limit.
+    // 2. Midpoints on polygon edges: one at a place where another gathers copies it, if that
+    //    one's polygon received this shot; else it gathers too, and the lowest (polygon, vertex)
+    //    of those that gather is the one later midpoints there copy (find_edge_midpoints rebuilds
+    //    the same from the mesh). In polygon order, so whatever the thread count.
+    for (size_t i = 0; i < np; ++i) {
+      const uint32_t p = polygons[i];
+      for (const EdgeMidpoint& e : on_edges[i]) {
+        const PolygonMesh& m = s.mesh.polygons[p];
+        const auto place = shared_place(s.clusters, p, m.vertices[e.vertex].position);
+        const SharedVertices::Gatherer self{p, e.vertex};
+        const auto [it, made] = shared.edge_midpoints.try_emplace(*place, self);
+        if (made) continue;
+        SharedVertices::Gatherer& g = it->second;
+        if (may_copy && e.exact >= 0 && s.received[g.polygon]) {
+          ExactVertex& x = exact[i][size_t(e.exact)];
+          x.from_polygon = g.polygon, x.from_vertex = g.vertex;
+          shared.copies[p].push_back({e.vertex, g.polygon, g.vertex});
+        } else if (std::tie(p, e.vertex) < std::tie(g.polygon, g.vertex)) {
+          g = self;
+        }
+      }
+    }
+    // 3. Compute the current shot exactly at the midpoints of edges beyond the limit.
     flat.clear();
     for (size_t i = 0; i < np; ++i) flat.insert(flat.end(), exact[i].begin(), exact[i].end());
     parallel_gather(flat.size(), 16, s.stats, [&](size_t begin, size_t end, GatherScratch& sc) {
       for (size_t i = begin; i != end; ++i) {
         const ExactVertex& x = flat[i];
+        if (x.from_polygon >= 0) continue;
         PolygonMesh& m = s.mesh.polygons[x.polygon];
         const Vec3 rho = s.material_of(x.polygon).reflectance;
         const MeshVertex &a = m.vertices[x.a], &b = m.vertices[x.b];
@@ -138,6 +184,16 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
         mid.shot = dh;
         mid.major = major ? major_h + dh : major_h;
       }
+    });
+    // 4. The copies take the state of the vertex they share (made in step 3, or earlier and
+    //    gathered in the shot): the same point of the same plane and Pure.
+    tbb::parallel_for(size_t(0), flat.size(), [&](size_t i) {
+      const ExactVertex& x = flat[i];
+      if (x.from_polygon < 0) return;
+      const MeshVertex& from = s.mesh.polygons[size_t(x.from_polygon)].vertices[x.from_vertex];
+      MeshVertex& to = s.mesh.polygons[x.polygon].vertices[x.vertex];
+      to.irradiance = from.irradiance, to.unshot = from.unshot;
+      to.shot = from.shot, to.major = from.major;
     });
     s.stats.exact_midpoints += flat.size();
     any = false;

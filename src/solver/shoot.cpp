@@ -2,6 +2,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+
 namespace rad {
 
 GatherSettings gather_settings(const SolverState& s) {
@@ -64,11 +66,6 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
     for (size_t p = r.first; p < size_t(r.first) + r.count; ++p)
       if (received[p]) receivers.push_back(uint32_t(p));
   }
-  // A shared vertex is skipped when the one that gathers for it is in a received polygon.
-  auto copied = [&](size_t p, size_t v) {
-    return shared.copies_gain(uint32_t(p), uint32_t(v)) &&
-           received[shared.polygon[shared.canonical[shared.first[p] + v]]];
-  };
   // Work items: a polygon's vertices, or 64 of them for a finely subdivided one, so its
   // vertices spread across threads too.
   std::vector<VertexRange>& work = s.gather_work;
@@ -86,8 +83,14 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
       const Vec3 n = tris.normal[p], centroid = tris.centroid(p);
       const Vec3 rho = s.material_of(p).reflectance;
       const GatherSettings own = receiver_settings(settings, s, p);
-      for (size_t v = w.begin; v < w.end; ++v) {
-        if (copied(p, v)) continue;
+      // A shared vertex is skipped when the one that gathers for it is in a received polygon.
+      const std::vector<VertexCopy>& copies = shared.copies[p];
+      auto next = std::lower_bound(copies.begin(), copies.end(), w.begin,
+                                   [](const VertexCopy& c, uint32_t v) { return c.vertex < v; });
+      for (uint32_t v = w.begin; v < w.end; ++v) {
+        if (next != copies.end() && next->vertex == v) {
+          if (received[next++->from_polygon]) continue;
+        }
         MeshVertex& x = mesh.vertices[v];
         const Vec3 dh = gather_from_source(x.position, n, centroid, src, vis, own, sc);
         x.irradiance += dh;
@@ -100,14 +103,12 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
   // The shared vertices take the gain of the one that gathered for them (same Pure: same rho).
   tbb::parallel_for(size_t(0), receivers.size(), [&](size_t i) {
     const uint32_t p = receivers[i];
-    const uint32_t initial = shared.first[p + 1] - shared.first[p];
     PolygonMesh& mesh = s.mesh.polygons[p];
     const Vec3 rho = s.material_of(p).reflectance;
-    for (uint32_t v = 0; v < initial; ++v) {
-      if (!copied(p, v)) continue;
-      const uint32_t c = shared.canonical[shared.first[p] + v], q = shared.polygon[c];
-      const Vec3 dh = s.mesh.polygons[q].vertices[c - shared.first[q]].shot;
-      MeshVertex& x = mesh.vertices[v];
+    for (const VertexCopy& c : shared.copies[p]) {
+      if (!received[c.from_polygon]) continue;
+      const Vec3 dh = s.mesh.polygons[c.from_polygon].vertices[c.from_vertex].shot;
+      MeshVertex& x = mesh.vertices[c.vertex];
       x.irradiance += dh;
       x.unshot += rho * dh;
       x.shot = dh;

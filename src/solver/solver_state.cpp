@@ -143,41 +143,80 @@ void share_unshot_totals(SolverState& s) {
   s.unshot_signed_total = double(sums[1]) / scale;
 }
 
+size_t SharedVertices::PlaceHash::operator()(const Place& k) const {
+  uint64_t h = (uint64_t(k.cluster) << 32 | k.x) * 0x9e3779b97f4a7c15ull;
+  h ^= (uint64_t(k.y) << 32 | k.z) + 0x632be59bd9b4e019ull + (h << 6) + (h >> 2);
+  return size_t(h ^ (h >> 31));
+}
+
+std::optional<SharedVertices::Place> shared_place(const Clusters& clusters, size_t p,
+                                                  const Vec3& x) {
+  const uint32_t c = clusters.cluster_of[p];
+  if (!clusters.planar[c] || clusters.polygon_count(c) < 2) return std::nullopt;
+  const Vec3 q = x + Vec3(0.0f);  // -0 as +0
+  SharedVertices::Place k{c, 0, 0, 0};
+  std::memcpy(&k.x, &q.x, 4), std::memcpy(&k.y, &q.y, 4), std::memcpy(&k.z, &q.z, 4);
+  return k;
+}
+
+bool on_triangle_edge(const std::array<Vec3, 3>& c, const Vec3& x) {
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 e = c[size_t(k + 1) % 3] - c[size_t(k)];
+    if (glm::length(glm::cross(e, x - c[size_t(k)])) <= 1e-5f * glm::dot(e, e)) return true;
+  }
+  return false;
+}
+
+void find_edge_midpoints(SolverState& s, std::span<const uint32_t> initial_vertices) {
+  SharedVertices& sh = s.shared;
+  sh.edge_midpoints.clear();
+  const Triangles& tris = s.hierarchy->triangles;
+  std::vector<uint32_t> copied;
+  for (uint32_t p = 0; p < s.mesh.polygons.size(); ++p) {
+    const PolygonMesh& m = s.mesh.polygons[p];
+    copied.clear();
+    for (const VertexCopy& c : sh.copies[p]) copied.push_back(c.vertex);
+    for (uint32_t v = initial_vertices[p]; v < m.vertex_count(); ++v) {
+      const Vec3& x = m.vertices[v].position;
+      const auto place = shared_place(s.clusters, p, x);
+      if (!place || !on_triangle_edge(tris.corners[p], x) ||
+          std::binary_search(copied.begin(), copied.end(), v)) {
+        continue;
+      }
+      sh.edge_midpoints.try_emplace(*place, SharedVertices::Gatherer{p, v});  // lowest first
+    }
+  }
+}
+
 SharedVertices find_shared_vertices(const Mesh& mesh, const Clusters& clusters) {
   SharedVertices sh;
   const size_t np = mesh.polygons.size();
-  sh.first.resize(np + 1, 0);
-  for (size_t p = 0; p < np; ++p)
-    sh.first[p + 1] = sh.first[p] + uint32_t(mesh.polygons[p].vertex_count());
-  const uint32_t n = sh.first[np];
-  sh.canonical.resize(n);
-  sh.polygon.resize(n);
+  sh.copies.resize(np);
   struct Key {
-    uint32_t cluster, x, y, z, index;
+    SharedVertices::Place place;
+    uint32_t polygon, vertex;
   };
   std::vector<Key> keys;
   for (size_t p = 0; p < np; ++p) {
-    const uint32_t c = clusters.cluster_of[p];
     for (uint32_t v = 0; v < mesh.polygons[p].vertex_count(); ++v) {
-      const uint32_t g = sh.first[p] + v;
-      sh.canonical[g] = g;
-      sh.polygon[g] = uint32_t(p);
-      if (!clusters.planar[c] || clusters.polygon_count(c) < 2) continue;
-      const Vec3 q = mesh.polygons[p].vertices[v].position + Vec3(0.0f);  // -0 as +0
-      Key k{c, 0, 0, 0, g};
-      std::memcpy(&k.x, &q.x, 4), std::memcpy(&k.y, &q.y, 4), std::memcpy(&k.z, &q.z, 4);
-      keys.push_back(k);
+      if (const auto k = shared_place(clusters, p, mesh.polygons[p].vertices[v].position))
+        keys.push_back({*k, uint32_t(p), v});
     }
   }
-  auto tie = [](const Key& k) { return std::make_tuple(k.cluster, k.x, k.y, k.z, k.index); };
+  auto tie = [](const Key& k) {
+    return std::make_tuple(k.place.cluster, k.place.x, k.place.y, k.place.z, k.polygon, k.vertex);
+  };
   std::sort(keys.begin(), keys.end(), [&](const Key& a, const Key& b) { return tie(a) < tie(b); });
-  for (size_t i = 1; i < keys.size(); ++i) {
-    const Key &a = keys[i - 1], &b = keys[i];
-    if (a.cluster == b.cluster && a.x == b.x && a.y == b.y && a.z == b.z)
-      sh.canonical[b.index] = sh.canonical[a.index];
+  for (size_t i = 1, first = 0; i < keys.size(); ++i) {
+    if (!(keys[i].place == keys[first].place)) {
+      first = i;
+      continue;
+    }
+    sh.copies[keys[i].polygon].push_back({keys[i].vertex, keys[first].polygon, keys[first].vertex});
   }
-  for (uint32_t g = 0; g < n; ++g)
-    if (sh.canonical[g] != g) sh.copies.push_back(g);
+  for (std::vector<VertexCopy>& c : sh.copies)
+    std::sort(c.begin(), c.end(),
+              [](const VertexCopy& a, const VertexCopy& b) { return a.vertex < b.vertex; });
   return sh;
 }
 

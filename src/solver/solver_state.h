@@ -2,8 +2,11 @@
 // between steps (the interactive mode edits materials here and continues).
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
+#include <unordered_map>
 #include <vector>
 
 #include "hierarchy/hierarchy.h"
@@ -37,18 +40,33 @@ struct ShotRecord {
   double unshot_fraction;  // unshot / emitted energy after the shot
 };
 
-/// Vertices of the initial mesh that polygons of one planar cluster share (the same position): a
-/// tessellated wall stores each grid point once per triangle around it (six times), but only the
-/// lowest (polygon, vertex) gathers; the others copy its gain after the shot. Indices are global
-/// over the initial vertices: polygon p's vertex v (v < first[p + 1] - first[p]) is first[p] + v.
+/// A vertex that takes the gain of another at the same position in the same planar cluster
+/// (the same point of the same plane and Pure) instead of gathering it again.
+struct VertexCopy {
+  uint32_t vertex, from_polygon, from_vertex;
+};
+
+/// The vertices that polygons of one planar cluster share: a tessellated wall stores each grid
+/// point once per triangle around it (six times), and each midpoint of an edge between two of
+/// its triangles twice once both split it, but one of them gathers and the others copy its gain
+/// after the shot. Found by position: among the initial vertices, the lowest (polygon, vertex)
+/// gathers; a midpoint made on a polygon's edge copies the one first made there, if that one's
+/// polygon received the same shot (else it gathers for itself, from then on).
 struct SharedVertices {
-  std::vector<uint32_t> first;      // per polygon, and one past the end
-  std::vector<uint32_t> canonical;  // per initial vertex: the one that gathers for it (or itself)
-  std::vector<uint32_t> polygon;    // per initial vertex: its polygon
-  std::vector<uint32_t> copies;     // the initial vertices whose canonical is another, in order
-  bool copies_gain(uint32_t p, uint32_t v) const {
-    return v < first[p + 1] - first[p] && canonical[first[p] + v] != first[p] + v;
-  }
+  struct Place {  // a position in a cluster, bit for bit (-0 as +0)
+    uint32_t cluster, x, y, z;
+    bool operator==(const Place&) const = default;
+  };
+  struct PlaceHash {
+    size_t operator()(const Place& k) const;
+  };
+  struct Gatherer {
+    uint32_t polygon, vertex;
+  };
+  /// Per polygon: its copies, in vertex order.
+  std::vector<std::vector<VertexCopy>> copies;
+  /// The midpoint that gathers at each place on polygon edges where one was made.
+  std::unordered_map<Place, Gatherer, PlaceHash> edge_midpoints;
 };
 
 class Ranks;
@@ -133,6 +151,20 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options);
 
 /// The initial mesh's vertices shared within planar clusters.
 SharedVertices find_shared_vertices(const Mesh& mesh, const Clusters& clusters);
+
+/// Where vertex position `x` of polygon p is shared, if it may be: p's cluster is planar with
+/// other polygons. (Whether x lies on p's edges is the caller's to say: on_triangle_edge.)
+std::optional<SharedVertices::Place> shared_place(const Clusters& clusters, size_t p,
+                                                  const Vec3& x);
+
+/// Whether x lies on an edge of the triangle (a midpoint of two points on one edge does, up to
+/// rounding; any other point of a subdivision lies a fraction of the smallest element inside).
+bool on_triangle_edge(const std::array<Vec3, 3>& c, const Vec3& x);
+
+/// s.shared.edge_midpoints from the mesh and the copies (after a checkpoint is read): at each
+/// place, the lowest (polygon, vertex) that gathers among the midpoints refinement made on
+/// polygon edges (vertices from initial_vertices[p] on).
+void find_edge_midpoints(SolverState& s, std::span<const uint32_t> initial_vertices);
 
 /// Unshot energy of cluster c: the sum of its polygons' absolute unshot energies, in order.
 double cluster_unshot_energy(const SolverState& s, size_t c);

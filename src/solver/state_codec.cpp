@@ -76,7 +76,7 @@ ShotSource read_shot(ByteReader& r, size_t clusters) {
   return s;
 }
 
-void write_polygon(ByteWriter& w, const PolygonMesh& p) {
+void write_polygon(ByteWriter& w, const PolygonMesh& p, const std::vector<VertexCopy>& copies) {
   w.vec(p.vertices);
   w.vec(p.elements);
   // Sorted, so equal states write equal files (the map's order depends on its history).
@@ -88,9 +88,10 @@ void write_polygon(ByteWriter& w, const PolygonMesh& p) {
   for (const auto& [k, v] : mids) keys.push_back(k), values.push_back(v);
   w.vec(keys);
   w.vec(values);
+  w.vec(copies);
 }
 
-void read_polygon(ByteReader& r, PolygonMesh& p) {
+void read_polygon(ByteReader& r, PolygonMesh& p, std::vector<VertexCopy>& copies, size_t polygons) {
   r.vec(p.vertices);
   r.vec(p.elements);
   std::vector<uint64_t> keys;
@@ -112,6 +113,13 @@ void read_polygon(ByteReader& r, PolygonMesh& p) {
   for (size_t i = 0; i < keys.size(); ++i) {
     if (values[i] >= nv) r.fail("a midpoint of no vertex");
     *p.midpoints.try_emplace(keys[i]).first = values[i];
+  }
+  r.vec(copies);
+  for (size_t i = 0; i < copies.size(); ++i) {
+    if (copies[i].vertex >= nv || copies[i].from_polygon >= polygons ||
+        (i > 0 && copies[i].vertex <= copies[i - 1].vertex)) {
+      r.fail("a copied vertex out of range or order");
+    }
   }
 }
 

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "mesh/patch_mesh.h"
 #include "solver/shot_source.h"
+#include "solver/solver_state.h"
 
 namespace rad {
 
@@ -77,8 +78,10 @@ void write_shot(ByteWriter& w, const ShotSource& s);
 /// Throws rad::Error when the record is inconsistent; `clusters` bounds its cluster index.
 ShotSource read_shot(ByteReader& r, size_t clusters);
 
-void write_polygon(ByteWriter& w, const PolygonMesh& p);
-/// Throws rad::Error when an index of the record is out of range.
-void read_polygon(ByteReader& r, PolygonMesh& p);
+/// A polygon's mesh and its vertices that copy another's gain (solver_state.h).
+void write_polygon(ByteWriter& w, const PolygonMesh& p, const std::vector<VertexCopy>& copies);
+/// Throws rad::Error when an index of the record is out of range (a copy's vertex in the polygon
+/// it copies from is the caller's to check, once every polygon is read).
+void read_polygon(ByteReader& r, PolygonMesh& p, std::vector<VertexCopy>& copies, size_t polygons);
 
 }  // namespace rad

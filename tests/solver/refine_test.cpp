@@ -91,11 +91,25 @@ TEST(Refine, ExactRuleComputesEveryMidpoint) {
 TEST(Refine, SharedVerticesAreComputedOnce) {
   const auto r = shoot_lamp_once({});
   // The floor's initial vertices gather once in the shot, those its two triangles share once for
-  // both (SharedVertices); every midpoint once when created. The lamp is the source.
-  size_t vertices = 0, copies = 0;
-  for (size_t p = 0; p < 2; ++p) vertices += r->s.mesh.polygons[p].vertex_count();
-  for (uint32_t g : r->s.shared.copies) copies += r->s.shared.polygon[g] < 2;
+  // both (SharedVertices); every midpoint once when created, those both triangles make on their
+  // shared diagonal once for both. The lamp is the source.
+  size_t vertices = 0, copies = 0, midpoint_copies = 0;
+  for (size_t p = 0; p < 2; ++p) {
+    const PolygonMesh& m = r->s.mesh.polygons[p];
+    vertices += m.vertex_count();
+    for (const VertexCopy& c : r->s.shared.copies[p]) {
+      ++copies;
+      midpoint_copies += c.vertex >= 3;  // not a corner: made by the refinement
+      // The same state as the vertex it copies, bit for bit.
+      const MeshVertex &to = m.vertices[c.vertex],
+                       &from = r->s.mesh.polygons[c.from_polygon].vertices[c.from_vertex];
+      EXPECT_EQ(to.position, from.position);
+      EXPECT_EQ(to.irradiance, from.irradiance);
+      EXPECT_EQ(to.unshot, from.unshot);
+    }
+  }
   EXPECT_GT(copies, 0u);
+  EXPECT_GT(midpoint_copies, 0u);
   EXPECT_EQ(r->s.stats.vertex_evaluations + r->s.stats.culled, vertices - copies);
 }
 
