@@ -20,16 +20,19 @@ namespace {
 // cluster a cap whose outline contour is seen from the front by most receivers).
 const float kCurvedCos = std::cos(25.0f * 3.14159265f / 180.0f);
 
-// Splits tris (one region) in two along its box's longest axis until every part's box diagonal
-// is within max_extent. The cut is put on a vertex coordinate near the median centroid when one
+// Splits tris (one region) in two along its box's longest axis until every part's area is
+// within max_area. The cut is put on a vertex coordinate near the median centroid when one
 // lies strictly inside the centroids' range, so a tessellated grid splits along a grid line and
 // the parts' outlines stay straight.
-void split_region(const Triangles& t, std::vector<uint32_t> tris, float max_extent,
+void split_region(const Triangles& t, std::vector<uint32_t> tris, double max_area,
                   std::vector<std::vector<uint32_t>>& parts) {
   Aabb box;
-  for (uint32_t i : tris)
+  double area = 0.0;
+  for (uint32_t i : tris) {
+    area += double(t.area[i]);
     for (const Vec3& p : t.corners[i]) box.extend(p);
-  if (tris.size() == 1 || box.diagonal() <= max_extent) {
+  }
+  if (tris.size() == 1 || area <= max_area) {
     parts.push_back(std::move(tris));
     return;
   }
@@ -52,8 +55,8 @@ void split_region(const Triangles& t, std::vector<uint32_t> tris, float max_exte
                                            [&](uint32_t i) { return t.centroid(i)[axis] < cut; }) -
                       tris.begin());
   if (mid == 0 || mid == tris.size()) mid = tris.size() / 2;
-  split_region(t, std::vector<uint32_t>(tris.begin(), tris.begin() + long(mid)), max_extent, parts);
-  split_region(t, std::vector<uint32_t>(tris.begin() + long(mid), tris.end()), max_extent, parts);
+  split_region(t, std::vector<uint32_t>(tris.begin(), tris.begin() + long(mid)), max_area, parts);
+  split_region(t, std::vector<uint32_t>(tris.begin() + long(mid), tris.end()), max_area, parts);
 }
 
 // The corners of a cluster's triangles that lie on no boundary edge, once each.
@@ -79,7 +82,7 @@ void interior_vertices(const Triangles& t, const std::vector<std::array<uint32_t
 
 }  // namespace
 
-Clusters make_clusters(const Hierarchy& h, float max_extent) {
+Clusters make_clusters(const Hierarchy& h, double max_area) {
   const Triangles& t = h.triangles;
   const std::vector<std::array<uint32_t, 3>> v = weld_corners(t);
   const std::vector<std::array<int32_t, 3>> nb = edge_neighbours(v);
@@ -116,7 +119,7 @@ Clusters make_clusters(const Hierarchy& h, float max_extent) {
   std::vector<std::vector<uint32_t>> parts;
   for (size_t r : order) {
     parts.clear();
-    split_region(t, regions[r], max_extent, parts);
+    split_region(t, regions[r], max_area, parts);
     for (std::vector<uint32_t>& tris : parts) {
       std::sort(tris.begin(), tris.end());
       const uint32_t c = uint32_t(k.size());

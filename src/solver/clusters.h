@@ -16,8 +16,8 @@ namespace rad {
 ///
 /// A planar cluster holds edge-connected triangles of one Pure within 0.1 degree of one plane; a
 /// curved one (a face cluster: Willmott, Heckbert, Garland, EGWR 1999) holds edge-connected
-/// triangles whose normals lie within a bounded cone of its axis. Both are split until their
-/// box diagonal is within the extent asked for.
+/// triangles whose normals lie within a bounded cone of its axis. Both are split (along their
+/// longest axis) until their area is within the bound asked for.
 ///
 /// The outline is the directed boundary of the cluster (edges used by one of its triangles
 /// only, in the triangles' order, collinear runs merged): by Stokes' theorem the contour
@@ -51,8 +51,8 @@ struct Clusters {
   uint32_t polygon_count(size_t c) const { return first[c + 1] - first[c]; }
 };
 
-/// Clusters of the hierarchy's triangles no wider (box diagonal) than `max_extent`, except
-/// single triangles, which stay whole. Deterministic: the same scene gives the same clusters.
-Clusters make_clusters(const Hierarchy& h, float max_extent);
+/// Clusters of the hierarchy's triangles of at most `max_area`, except single triangles, which
+/// stay whole. Deterministic: the same scene gives the same clusters.
+Clusters make_clusters(const Hierarchy& h, double max_area);
 
 }  // namespace rad

@@ -262,7 +262,12 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   s.shadow_offset = shadow_offset(h.bounds);
   assert(options.sample_grid >= 1 && options.max_sample_grid <= 64);
   const int max_m = std::max(options.sample_grid, options.max_sample_grid);
-  s.clusters = make_clusters(h, float(max_m) * s.max_size);
+  // A cluster's n <= max_m^2 strata each stand for at most one initial element's square: its
+  // area, not its width, bounds it, so a tessellated wall splits as its two triangles would
+  // (a diagonal bound split the Cornell walls into quarters once tessellated: 31 clusters and
+  // 50% more shots than the 21 of the untessellated box).
+  const double side = double(max_m) * double(s.max_size);
+  s.clusters = make_clusters(h, side * side);
   s.shared = find_shared_vertices(s.mesh, s.clusters);
   update_unshot_totals(s);
   s.barycentric_grids.resize(size_t(4 * max_m) + 1);

@@ -84,7 +84,7 @@ struct SolverState {
   Mesh mesh;
   /// Materials per hierarchy object (copied so they can be edited between shots).
   std::vector<Material> materials;
-  /// The shooting patches (SPEC §10), no wider than max_sample_grid x max_size.
+  /// The shooting patches (SPEC §10), of at most (max_sample_grid x max_size)^2 each.
   Clusters clusters;
   SharedVertices shared;
   /// Per polygon: unshot energy (area-integrated mean-channel unshot radiosity), kept current.

@@ -23,7 +23,7 @@ SceneDescription quad_scene(int k) {
 TEST(Clusters, ATessellatedQuadIsOneClusterWithAFourEdgeOutline) {
   for (int k : {1, 3, 8, 24}) {
     const Hierarchy h = build_hierarchy(quad_scene(k));
-    const Clusters c = make_clusters(h, 10.0f);
+    const Clusters c = make_clusters(h, 100.0);
     ASSERT_EQ(c.size(), 1u) << k;
     EXPECT_EQ(c.polygon_count(0), h.triangles.size());
     EXPECT_EQ(c.edge_a.size(), 4u) << "collinear boundary runs merged, k = " << k;
@@ -32,17 +32,17 @@ TEST(Clusters, ATessellatedQuadIsOneClusterWithAFourEdgeOutline) {
   }
 }
 
-TEST(Clusters, AreSplitToTheExtentAskedForWhateverTheTessellation) {
+TEST(Clusters, AreSplitToTheAreaAskedForWhateverTheTessellation) {
   for (int k : {1, 4, 16}) {
     const Hierarchy h = build_hierarchy(quad_scene(k));
-    const Clusters c = make_clusters(h, 0.75f);
+    const Clusters c = make_clusters(h, 0.3);
     for (size_t i = 0; i < c.size(); ++i) {
       if (c.polygon_count(i) > 1) {
-        EXPECT_LE(c.extent[i], 0.75f + 1e-5f) << k;
+        EXPECT_LE(c.area[i], 0.3f + 1e-5f) << k;
       }
     }
-    // k = 1: the two triangles (each wider than 0.75) stand alone; finer: about four quarters.
-    EXPECT_LE(c.size(), 4u) << k;
+    // k = 1: the two triangles (each larger than 0.3) stand alone; finer: four quarters.
+    EXPECT_LE(c.size(), k == 1 ? 2u : 4u) << k;
     for (size_t t = 0; t < h.triangles.size(); ++t) {
       const uint32_t ci = c.cluster_of[t];
       bool found = false;
@@ -57,7 +57,7 @@ TEST(Clusters, AreSplitToTheExtentAskedForWhateverTheTessellation) {
 // quad.
 TEST(Clusters, OutlineFormFactorEqualsTheSumOverItsTriangles) {
   const Hierarchy h = build_hierarchy(quad_scene(6));
-  const Clusters c = make_clusters(h, 10.0f);
+  const Clusters c = make_clusters(h, 100.0);
   ASSERT_EQ(c.size(), 1u);
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(-1.5f, 2.5f);
@@ -113,7 +113,7 @@ TEST(Clusters, ACurvedMeshMakesFaceClustersWithABoundedNormalCone) {
   int i = 0;
   for (int stacks : {40, 160}) {
     const Hierarchy h = sphere(stacks);
-    const Clusters c = make_clusters(h, 10.0f);
+    const Clusters c = make_clusters(h, 100.0);
     std::printf("sphere: %zu triangles, %zu clusters\n", h.triangles.size(), c.size());
     EXPECT_LT(c.size() * 10, h.triangles.size());
     for (size_t k = 0; k < c.size(); ++k) {
