@@ -1,6 +1,7 @@
 #include "mesh/subdivide.h"
 
 #include <cassert>
+#include <cmath>
 
 namespace rad {
 
@@ -33,6 +34,10 @@ float longest_edge(const PolygonMesh& p, uint32_t e) {
              &c = p.vertices[el.v[2]].position;
   return glm::sqrt(
       glm::max(glm::dot(b - a, b - a), glm::max(glm::dot(c - b, c - b), glm::dot(a - c, a - c))));
+}
+
+float element_size(const PolygonMesh& p, uint32_t e) {
+  return std::sqrt(2.0f * p.elements[e].area);
 }
 
 }  // namespace rad

@@ -23,4 +23,10 @@ int split_element(PolygonMesh& p, uint32_t e, NewMidpoint created[3]);
 /// Longest edge of element `e`.
 float longest_edge(const PolygonMesh& p, uint32_t e);
 
+/// The size of element `e` for the subdivision limits: sqrt(2 x its area), the legs of a right
+/// isosceles triangle of its area (about the side of an equilateral one). Unlike the longest
+/// edge it does not depend on the triangle's shape, so a tessellation into right triangles
+/// refines as deep as one into others of the same area.
+float element_size(const PolygonMesh& p, uint32_t e);
+
 }  // namespace rad

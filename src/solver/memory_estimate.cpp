@@ -19,16 +19,16 @@ constexpr double kMidpointBytes = 48.0;
 }  // namespace
 
 double worst_case_growth_bytes(const SolverState& s) {
-  const float split_edge = 2.0f * s.min_size;
+  const float split_size = 2.0f * s.min_size;
   return tbb::parallel_reduce(
       tbb::blocked_range<size_t>(0, s.mesh.polygons.size()), 0.0,
       [&](const tbb::blocked_range<size_t>& r, double bytes) {
         for (size_t p = r.begin(); p < r.end(); ++p) {
           const PolygonMesh& m = s.mesh.polygons[p];
           for_each_leaf(m, [&](uint32_t e) {
-            const float longest = longest_edge(m, e);
-            if (!(longest >= split_edge)) return;
-            const double d = std::floor(std::log2(double(longest) / double(split_edge))) + 1.0;
+            const float size = element_size(m, e);
+            if (!(size >= split_size)) return;
+            const double d = std::floor(std::log2(double(size) / double(split_size))) + 1.0;
             const double side = std::exp2(d);                         // edge segments per side
             const double vertices = (side + 1) * (side + 2) / 2 - 3;  // all new
             const double elements = (std::exp2(2 * d + 2) - 1) / 3 - 1;

@@ -57,7 +57,7 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
   // building, and per-polygon work over the whole scene would cost more than the shot.
   const size_t np = polygons.size();
   const float limit = s.options.subdivision_threshold * s.radiosity_scale;
-  const float min_split_edge = 2.0f * s.min_size;  // children must keep edges >= min_size
+  const float min_split_size = 2.0f * s.min_size;  // children keep sizes >= min_size
   const GatherSettings settings = gather_settings(s);
   const bool all_exact = s.options.midpoints == MidpointRule::Exact || src == nullptr;
 
@@ -94,7 +94,7 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
           const Vec3 b0 = B(v[0]), b1 = B(v[1]), b2 = B(v[2]);
           const bool d01 = differs(b0, b1, limit), d12 = differs(b1, b2, limit),
                      d20 = differs(b2, b0, limit);
-          if (!(d01 || d12 || d20) || longest_edge(m, e) < min_split_edge) continue;
+          if (!(d01 || d12 || d20) || element_size(m, e) < min_split_size) continue;
           const bool exact_edge[3][3] = {{false, d01, d20}, {d01, false, d12}, {d20, d12, false}};
           auto index_of = [&](uint32_t x) { return x == v[0] ? 0 : x == v[1] ? 1 : 2; };
           NewMidpoint created[3];
