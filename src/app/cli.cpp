@@ -78,18 +78,20 @@ struct Solving {
     app.add_option("--threads", r.threads, "Worker threads (0 = all cores)")->capture_default_str();
     SolverOptions& o = r.solver;
     app.add_flag("!--no-shadows", o.shadows, "No shadow rays: every visibility term is 1");
-    app.add_option("--min-size", o.min_size,
-                   "Smallest element edge, scene units (default: scene diagonal / 256)");
+    app.add_option(
+        "--min-size", o.min_size,
+        "Smallest element size (the legs of a right triangle of its area), scene units (default: "
+        "scene size / 256, the diameter of a sphere holding it)");
     app.add_option("--max-size", o.max_size,
                    "Largest element edge of the initial mesh, scene units (default: scene "
-                   "diagonal / 16, at least 2 x --min-size)");
+                   "size / 16, at least 2 x --min-size)");
     app.add_option("--samples", samples,
                    "Fewest samples per shooting cluster (a square: 1, 4, 9, 16, ... up to 256)")
         ->capture_default_str();
     app.add_option("--max-samples", max_samples,
                    "Most samples per shooting cluster (a square, up to 256): a big source gets "
                    "more than --samples, as many as bring their spacing within the initial mesh's "
-                   "element size (scene diagonal / 16) or this many; give both to fix the count")
+                   "element size (scene size / 16) or this many; give both to fix the count")
         ->capture_default_str();
     app.add_option("--form-factor", method,
                    "analytic (exact unoccluded form factor x sampled visibility) or samples "

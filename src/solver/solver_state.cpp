@@ -220,14 +220,48 @@ SharedVertices find_shared_vertices(const Mesh& mesh, const Clusters& clusters) 
   return sh;
 }
 
+float scene_size(const Hierarchy& h) {
+  // Ritter's bounding sphere (Graphics Gems, 1990): distances only, so the same however the
+  // scene is turned, and within a few percent of the smallest sphere (a box's diagonal exactly).
+  const auto& corners = h.triangles.corners;
+  if (corners.empty()) return 0.0f;
+  auto farthest = [&](const DVec3& from) {
+    DVec3 best = from;
+    double d2 = -1.0;
+    for (const auto& c : corners) {
+      for (const Vec3& p : c) {
+        const DVec3 q(p);
+        if (glm::dot(q - from, q - from) > d2) d2 = glm::dot(q - from, q - from), best = q;
+      }
+    }
+    return best;
+  };
+  const DVec3 y = farthest(DVec3(corners[0][0])), z = farthest(y);
+  DVec3 centre = (y + z) * 0.5;
+  double r = glm::length(z - y) * 0.5;
+  for (const auto& c : corners) {
+    for (const Vec3& p : c) {
+      const double d = glm::length(DVec3(p) - centre);
+      if (d > r) {  // grow the sphere just enough to take p
+        const double grown = (r + d) * 0.5;
+        centre += (DVec3(p) - centre) * ((grown - r) / d);
+        r = grown;
+      }
+    }
+  }
+  return float(2.0 * r);
+}
+
 SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) {
   SolverState s;
   s.hierarchy = &h;
   s.options = options;
   s.mesh = make_mesh(h);
-  // Default minimum size: 1/256 of the scene diagonal (about 2 mm in the 0.55 m Cornell box).
-  s.min_size = options.min_size > 0.0f ? options.min_size : h.bounds.diagonal() / 256.0f;
-  s.max_size = options.max_size > 0.0f ? options.max_size : h.bounds.diagonal() / 16.0f;
+  // Default sizes: 1/256 and 1/16 of the scene's size (about 3.8 mm and 60 mm in the 0.55 m
+  // Cornell box).
+  const float size = scene_size(h);
+  s.min_size = options.min_size > 0.0f ? options.min_size : size / 256.0f;
+  s.max_size = options.max_size > 0.0f ? options.max_size : size / 16.0f;
   s.max_size = std::max(s.max_size, 2.0f * s.min_size);
   // The initial mesh: uniform splits down to max_size (vertices have no radiosity yet).
   tbb::parallel_for(size_t(0), s.mesh.polygons.size(), [&](size_t p) {

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -70,6 +71,26 @@ TEST(MergeFlatRegions, ATessellatedSquareBecomesTwoTrianglesOfTheSameAreaAndObje
       EXPECT_GT(m->triangles.normal[i].z, 0.99f);  // the front kept
     }
   }
+}
+
+TEST(MergeFlatRegions, ATurnedAndMovedSquareMergesDespiteItsRounding) {
+  // Turned 30 degrees about y and 20 about x, then moved far off: its points leave the lines and
+  // the plane they were on by a rounding error of their coordinates.
+  std::vector<Tri> square = grid(16, 0.0f);
+  const float cy = std::cos(0.5236f), sy = std::sin(0.5236f), cx = std::cos(0.3491f),
+              sx = std::sin(0.3491f);
+  for (Tri& t : square) {
+    for (Vec3& p : t) {
+      p = Vec3(cy * p.x + sy * p.z, p.y, -sy * p.x + cy * p.z);
+      p = Vec3(p.x, cx * p.y - sx * p.z, sx * p.y + cx * p.z);
+      p = p * 0.03f + Vec3(5.0f, -2.0f, 3.0f);
+    }
+  }
+  const Hierarchy h = scene_of({square});
+  const std::optional<Hierarchy> m = merge_flat_regions(h);
+  ASSERT_TRUE(m);
+  EXPECT_EQ(m->triangles.size(), 2u);
+  EXPECT_NEAR(total_area(*m, 0, 2), total_area(h, 0, uint32_t(h.triangles.size())), 1e-6);
 }
 
 TEST(MergeFlatRegions, AnLShapedRegionIsClippedIntoEarsThatCoverItExactly) {
