@@ -1,26 +1,59 @@
 #include "export/output_mesh.h"
 
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+
 namespace rad {
 
 std::shared_ptr<const MeshGeometry> OutputMeshBuilder::update(const SolverState& s, bool* changed) {
   const std::vector<PolygonMesh>& polys = s.mesh.polygons;
+  const Clusters& clusters = s.clusters;
+  const Triangles& tris = s.hierarchy->triangles;
   bool any = !geometry_ || polygons_.size() != polys.size();
   polygons_.resize(polys.size());
+  // Elements are only ever added (split into four), so unchanged counts mean unchanged faces;
+  // a polygon of a planar cluster also takes its neighbours' midpoints on shared edges, so the
+  // whole cluster is triangulated again when one of its polygons changed.
+  std::vector<uint32_t> clusters_changed;
   for (size_t p = 0; p < polys.size(); ++p) {
     Polygon& c = polygons_[p];
-    // Elements are only ever added (split into four), so unchanged counts mean unchanged faces.
     if (c.vertices == polys[p].vertex_count() && c.elements == polys[p].elements.size()) continue;
     c.vertices = polys[p].vertex_count();
     c.elements = polys[p].elements.size();
-    c.faces = triangulate_leaves(polys[p]);
     any = true;
+    const uint32_t k = clusters.cluster_of[p];
+    if (clusters.planar[k] && clusters.polygon_count(k) > 1) {
+      clusters_changed.push_back(k);
+    } else {
+      c.faces = triangulate_leaves(polys[p], uint32_t(p));
+    }
   }
+  std::sort(clusters_changed.begin(), clusters_changed.end());
+  clusters_changed.erase(std::unique(clusters_changed.begin(), clusters_changed.end()),
+                         clusters_changed.end());
+  tbb::parallel_for(size_t(0), clusters_changed.size(), [&](size_t i) {
+    const uint32_t k = clusters_changed[i];
+    SeamVertices seams;
+    for (uint32_t j = clusters.first[k]; j < clusters.first[k + 1]; ++j) {
+      const uint32_t q = clusters.polygons[j];
+      const PolygonMesh& m = polys[q];
+      for (uint32_t v = 0; v < m.vertex_count(); ++v) {
+        if (on_triangle_edge(tris.corners[q], m.vertices[v].position))
+          seams.add(m.vertices[v].position, VertexRef{q, v});
+      }
+    }
+    for (uint32_t j = clusters.first[k]; j < clusters.first[k + 1]; ++j) {
+      const uint32_t q = clusters.polygons[j];
+      polygons_[q].faces = triangulate_leaves(polys[q], q, &seams);
+    }
+  });
   *changed = any;
   if (!any) return geometry_;
   auto g = std::make_shared<MeshGeometry>();
   size_t nv = 0, ni = 0;
   for (const Polygon& c : polygons_) {
-    nv += c.vertices + c.faces.centroids.size();
+    nv += c.vertices + c.faces.centroids.size() + c.faces.seam.size();
     ni += c.faces.triangles.size();
   }
   g->position.reserve(nv);
@@ -36,6 +69,8 @@ std::shared_ptr<const MeshGeometry> OutputMeshBuilder::update(const SolverState&
           (m.vertices[k[0]].position + m.vertices[k[1]].position + m.vertices[k[2]].position) /
           3.0f);
     }
+    for (const VertexRef& r : f.seam)
+      g->position.push_back(polys[r.polygon].vertices[r.vertex].position);
     for (uint32_t i : f.triangles) g->indices.push_back(base + i);
     g->face_polygon.insert(g->face_polygon.end(), f.triangles.size() / 3, int32_t(p));
   }
@@ -57,6 +92,8 @@ void OutputMeshBuilder::values(const SolverState& s, Vec3 ambient, std::vector<V
       radiosity.push_back((s.radiosity(p, k[0]) + s.radiosity(p, k[1]) + s.radiosity(p, k[2])) /
                           3.0f);
     }
+    for (const VertexRef& r : polygons_[p].faces.seam)
+      radiosity.push_back(s.radiosity(r.polygon, r.vertex));
     const Material& mat = s.material_of(p);
     for (size_t v = first; v < radiosity.size(); ++v) {
       display.push_back(radiosity[v] + mat.reflectance * ambient);

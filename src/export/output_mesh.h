@@ -11,8 +11,9 @@
 
 namespace rad {
 
-/// Faces and vertex positions. Each polygon's vertices come first, then its centroids (see
-/// triangulate_leaves); vertices are shared within a polygon, not across polygons.
+/// Faces and vertex positions. Each polygon's vertices come first, then its centroids, then the
+/// neighbours' vertices on its edges (see triangulate_leaves); vertices are shared within a
+/// polygon, not across polygons.
 struct MeshGeometry {
   std::vector<Vec3> position;
   std::vector<uint32_t> indices;      // 3 per face

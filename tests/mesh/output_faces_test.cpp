@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "mesh/subdivide.h"
 #include "mesh_fixtures.h"
 
 namespace rad {
@@ -50,6 +51,40 @@ TEST(OutputFaces, FacesTileThePolygonWithoutTJunctions) {
     }
     EXPECT_NEAR(area, p.elements[0].area, 1e-5);
   }
+}
+
+// Two triangles sharing the edge (1,0)-(0,1): the first splits twice, the second not at all. The
+// second's faces take the first's midpoints on that edge as T-vertices (seam), in order, so
+// the two tile the square without a crack there.
+TEST(OutputFaces, ANeighboursMidpointsOnTheSharedEdgeAreSeamVertices) {
+  PolygonMesh a = testing::one_polygon({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  const PolygonMesh b = testing::one_polygon({1, 0, 0}, {1, 1, 0}, {0, 1, 0});
+  NewMidpoint created[3];
+  split_element(a, 0, created);
+  split_element(a, uint32_t(a.elements[0].first_child + 3), created);  // the middle child
+  split_element(a, uint32_t(a.elements[0].first_child + 1), created);  // at corner (1,0)
+  SeamVertices seams;
+  for (uint32_t v = 0; v < a.vertex_count(); ++v) seams.add(a.vertices[v].position, {0, v});
+  for (uint32_t v = 0; v < b.vertex_count(); ++v) seams.add(b.vertices[v].position, {1, v});
+  const PolygonFaces f = triangulate_leaves(b, 1, &seams);
+  // On the edge: its midpoint (0.5, 0.5) and the quarter point (0.75, 0.25), both a's.
+  ASSERT_EQ(f.seam.size(), 2u);
+  std::vector<Vec3> pos = positions_with_centroids(b, f);
+  for (const VertexRef& r : f.seam) {
+    EXPECT_EQ(r.polygon, 0u);
+    pos.push_back(a.vertices[r.vertex].position);
+  }
+  double area = 0.0;
+  for (size_t t = 0; t < f.triangles.size(); t += 3) {
+    const Vec3 p0 = pos[f.triangles[t]], p1 = pos[f.triangles[t + 1]], p2 = pos[f.triangles[t + 2]];
+    const float z = glm::cross(p1 - p0, p2 - p0).z;
+    ASSERT_GT(z, 1e-9f) << "degenerate or flipped face";
+    area += 0.5 * z;
+  }
+  EXPECT_NEAR(area, 0.5, 1e-6);
+  EXPECT_EQ(f.triangles.size(), 9u);  // a fan of three from the corner (1,1)
+  // Without the seams: the one face.
+  EXPECT_EQ(triangulate_leaves(b, 1).triangles.size(), 3u);
 }
 
 }  // namespace
