@@ -7,6 +7,8 @@
 
 namespace rad {
 
+namespace {
+
 std::vector<std::array<uint32_t, 3>> weld_corners(const Triangles& t) {
   struct Key {
     int32_t object;
@@ -66,9 +68,15 @@ std::vector<std::array<int32_t, 3>> edge_neighbours(const std::vector<std::array
   return out;
 }
 
-void grow_regions(const Triangles& t, const std::vector<std::array<int32_t, 3>>& nb,
-                  float cos_limit, std::vector<uint8_t>& free, std::vector<uint32_t>& out,
-                  std::vector<uint32_t>& starts) {
+}  // namespace
+
+Regions find_regions(const Triangles& t, float cos_limit) {
+  Regions r;
+  r.corners = weld_corners(t);
+  const std::vector<std::array<int32_t, 3>> nb = edge_neighbours(r.corners);
+  std::vector<uint8_t> free(t.size(), 1);
+  std::vector<uint32_t>& out = r.triangles;
+  std::vector<uint32_t>& starts = r.first;
   std::vector<uint32_t> queue;
   for (uint32_t seed = 0; seed < t.size(); ++seed) {
     if (!free[seed]) continue;
@@ -86,6 +94,8 @@ void grow_regions(const Triangles& t, const std::vector<std::array<int32_t, 3>>&
       }
     }
   }
+  starts.push_back(uint32_t(out.size()));
+  return r;
 }
 
 std::vector<BoundaryEdge> boundary_edges(const Triangles& t,

@@ -14,21 +14,18 @@ namespace rad {
 /// Normals within 0.1 degree of each other count as one plane: cos(0.1 degree).
 inline constexpr float kPlanarCos = 0.99999847691f;
 
-/// Vertex ids per triangle corner: corners at exactly the same position within one Pure share
-/// an id (-0 and +0 alike).
-std::vector<std::array<uint32_t, 3>> weld_corners(const Triangles& t);
-
-/// The triangle across each edge (k, k+1) of every triangle, or -1: manifold edges only (used
-/// by exactly two triangles, in opposite directions).
-std::vector<std::array<int32_t, 3>> edge_neighbours(const std::vector<std::array<uint32_t, 3>>& v);
-
-/// Edge-connected regions of one Pure grown breadth-first from the lowest unassigned triangle,
-/// taking neighbours whose normal is within `cos_limit` of the seed's, over the triangles with
-/// free[i] set (cleared as they are taken). Regions are appended to `out`, flat, with their
-/// starts appended to `starts`.
-void grow_regions(const Triangles& t, const std::vector<std::array<int32_t, 3>>& nb,
-                  float cos_limit, std::vector<uint8_t>& free, std::vector<uint32_t>& out,
-                  std::vector<uint32_t>& starts);
+/// Edge-connected regions of one Pure each, grown breadth-first from the lowest unassigned
+/// triangle, taking neighbours whose normal is within `cos_limit` of the seed's; with the welded
+/// corners they were found with.
+struct Regions {
+  /// Vertex ids per triangle corner: corners at exactly the same position within one Pure
+  /// share one (-0 and +0 alike).
+  std::vector<std::array<uint32_t, 3>> corners;
+  std::vector<uint32_t> triangles;  // grouped by region
+  std::vector<uint32_t> first;      // per region, and one past the end
+  size_t size() const { return first.size() - 1; }
+};
+Regions find_regions(const Triangles& t, float cos_limit);
 
 /// A directed edge of a region's boundary: welded vertex ids and positions.
 struct BoundaryEdge {

@@ -84,16 +84,13 @@ void interior_vertices(const Triangles& t, const std::vector<std::array<uint32_t
 
 Clusters make_clusters(const Hierarchy& h, double max_area) {
   const Triangles& t = h.triangles;
-  const std::vector<std::array<uint32_t, 3>> v = weld_corners(t);
-  const std::vector<std::array<int32_t, 3>> nb = edge_neighbours(v);
-
   // One pass of region growing with the face clusters' cone; a region whose normals all agree
   // within 0.1 degree is planar. (Growing planar regions first fragments a finely tessellated
   // sphere, whose neighbouring quads lie within a degree of each other, into thousands.)
-  std::vector<uint8_t> free(t.size(), 1);
-  std::vector<uint32_t> flat, starts;
-  grow_regions(t, nb, kCurvedCos, free, flat, starts);
-  starts.push_back(uint32_t(flat.size()));
+  const Regions found = find_regions(t, kCurvedCos);
+  const std::vector<std::array<uint32_t, 3>>& v = found.corners;
+  const std::vector<uint32_t>& flat = found.triangles;
+  const std::vector<uint32_t>& starts = found.first;
   std::vector<std::vector<uint32_t>> regions;
   std::vector<uint8_t> region_planar;
   for (size_t r = 0; r + 1 < starts.size(); ++r) {

@@ -135,12 +135,10 @@ std::vector<std::array<Vec3, 3>> merged_region(const Hierarchy& h,
 
 std::optional<Hierarchy> merge_flat_regions(const Hierarchy& h) {
   const Triangles& t = h.triangles;
-  const std::vector<std::array<uint32_t, 3>> v = weld_corners(t);
-  const std::vector<std::array<int32_t, 3>> nb = edge_neighbours(v);
-  std::vector<uint8_t> free(t.size(), 1);
-  std::vector<uint32_t> flat, starts;
-  grow_regions(t, nb, kPlanarCos, free, flat, starts);
-  starts.push_back(uint32_t(flat.size()));
+  const Regions found = find_regions(t, kPlanarCos);
+  const std::vector<std::array<uint32_t, 3>>& v = found.corners;
+  const std::vector<uint32_t>& flat = found.triangles;
+  const std::vector<uint32_t>& starts = found.first;
 
   // Per triangle: the region it was merged into (its replacement goes where the region's
   // lowest triangle was, which keeps every object's triangles contiguous), or -1.
