@@ -68,12 +68,13 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
   // Copies take the current shot's state from a vertex that has it: only after a shot.
   const bool may_copy = src != nullptr && all_exact;
   std::vector<uint64_t> splits(np, 0), interpolated(np, 0);
-  tbb::parallel_for(size_t(0), np, [&](size_t i) {
-    for_each_leaf(s.mesh.polygons[polygons[i]], [&](uint32_t e) { check[i].push_back(e); });
-  });
 
   std::vector<ExactVertex> flat;
-  for (bool any = true; any;) {
+  // The first pass looks at every leaf of the polygons as it walks them (a list per polygon
+  // would cost a million allocations a shot in a large scene, most polygons never splitting);
+  // later passes at the children made by the one before.
+  bool first_pass = true;
+  for (bool any = true; any; first_pass = false) {
     // 1. Split what needs it; interpolated midpoints get their values now (their ends are
     //    final: only vertices of elements checked in this pass are ends).
     tbb::parallel_for(tbb::blocked_range<size_t>(0, np, 16), [&](const auto& range) {
@@ -81,7 +82,7 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
         next[i].clear();
         exact[i].clear();
         on_edges[i].clear();
-        if (check[i].empty()) continue;
+        if (!first_pass && check[i].empty()) continue;
         const uint32_t p = polygons[i];
         const bool sharing = bool(shared_place(s.clusters, p, Vec3(0.0f)));
         PolygonMesh& m = s.mesh.polygons[p];
@@ -89,12 +90,12 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
         auto B = [&](uint32_t v) {
           return mat.emission + mat.reflectance * m.vertices[v].irradiance;
         };
-        for (uint32_t e : check[i]) {
+        auto consider = [&](uint32_t e) {
           const uint32_t v[3] = {m.elements[e].v[0], m.elements[e].v[1], m.elements[e].v[2]};
           const Vec3 b0 = B(v[0]), b1 = B(v[1]), b2 = B(v[2]);
           const bool d01 = differs(b0, b1, limit), d12 = differs(b1, b2, limit),
                      d20 = differs(b2, b0, limit);
-          if (!(d01 || d12 || d20) || element_size(m, e) < min_split_size) continue;
+          if (!(d01 || d12 || d20) || element_size(m, e) < min_split_size) return;
           const bool exact_edge[3][3] = {{false, d01, d20}, {d01, false, d12}, {d20, d12, false}};
           auto index_of = [&](uint32_t x) { return x == v[0] ? 0 : x == v[1] ? 1 : 2; };
           NewMidpoint created[3];
@@ -120,6 +121,13 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
           }
           const uint32_t first = uint32_t(m.elements[e].first_child);
           for (uint32_t c = 0; c < 4; ++c) next[i].push_back(first + c);
+        };
+        // Splitting a leaf appends elements, but the walk keeps indices only and does not
+        // visit the new children.
+        if (first_pass) {
+          for_each_leaf(m, consider);
+        } else {
+          for (uint32_t e : check[i]) consider(e);
         }
       }
     });
