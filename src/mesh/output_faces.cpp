@@ -50,6 +50,7 @@ struct Interior {
   // would be (split_element's midpoint, to the bit).
   void across(const Vec3& a, const Vec3& b, std::vector<uint32_t>& out) const {
     const Vec3 x = (a + b) * 0.5f;
+    if (x == a || x == b) return;  // the edge is a rounding step long: nothing lies inside
     const VertexRef* v = seams->find(x);
     if (!v || v->polygon == self) return;
     across(a, x, out);

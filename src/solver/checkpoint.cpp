@@ -116,10 +116,20 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   mesh.polygons.resize(np);
   std::vector<std::vector<VertexCopy>> copies(np);
   for (size_t p = 0; p < np; ++p) read_polygon(r, mesh.polygons[p], copies[p], np);
+  // A copy's source gathers: it is a vertex, and no copy itself (a chain would have the shot
+  // read a gain while another thread writes it).
+  auto is_copy = [&](uint32_t p, uint32_t v) {
+    const std::vector<VertexCopy>& cs = copies[p];
+    auto it = std::lower_bound(cs.begin(), cs.end(), v,
+                               [](const VertexCopy& c, uint32_t x) { return c.vertex < x; });
+    return it != cs.end() && it->vertex == v;
+  };
   for (const std::vector<VertexCopy>& cs : copies) {
     for (const VertexCopy& c : cs) {
-      if (c.from_vertex >= mesh.polygons[c.from_polygon].vertex_count())
-        r.fail("a vertex copied from no vertex");
+      if (c.from_vertex >= mesh.polygons[c.from_polygon].vertex_count() ||
+          is_copy(c.from_polygon, c.from_vertex)) {
+        r.fail("a vertex copied from no vertex, or from a copy");
+      }
     }
   }
   std::vector<Material> materials;

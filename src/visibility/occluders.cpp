@@ -9,7 +9,7 @@ namespace rad {
 
 namespace {
 
-// Loops longer than this are left as they are (ear clipping is quadratic in the loop).
+// Loops longer than this are left as they are (ear clipping is cubic in the loop at worst).
 constexpr size_t kMaxLoop = 512;
 
 // The closed loop the outline edges make, as its corners in order, or empty when they make

@@ -155,5 +155,38 @@ TEST(Checkpoint, RefusesAnotherSolveADamagedFileATruncatedOneAndNoCheckpoint) {
   fs::remove(file);
 }
 
+// A file whose checksum holds but whose copies chain (a copy of a copy): the shot would read a
+// gain another thread is writing. Refused as corrupt.
+TEST(Checkpoint, RefusesACopyOfACopy) {
+  const Hierarchy h = lit_box();
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  SolverState s = solved(h, *vis, 2);
+  const uint64_t id = solve_fingerprint(h, s.options, BackendKind::Embree);
+  // Two copies; the second made to copy the first.
+  const VertexCopy* first = nullptr;
+  VertexCopy* second = nullptr;
+  for (auto& cs : s.shared.copies) {
+    for (VertexCopy& c : cs) {
+      if (!first) {
+        first = &c;
+      } else if (!second) {
+        second = &c;
+      }
+    }
+  }
+  ASSERT_TRUE(first && second);
+  uint32_t first_polygon = 0;
+  for (uint32_t p = 0; p < s.shared.copies.size(); ++p)
+    if (!s.shared.copies[p].empty() && &s.shared.copies[p][0] == first) first_polygon = p;
+  second->from_polygon = first_polygon, second->from_vertex = first->vertex;
+  const fs::path file = temp_file("rad-ckpt-chain");
+  write_checkpoint(file, s, id);
+  SolverState fresh = make_solver_state(h, s.options);
+  EXPECT_NE(error_of(file, fresh, id).find("copied from no vertex, or from a copy"),
+            std::string::npos);
+  EXPECT_EQ(fresh.shots, 0);
+  fs::remove(file);
+}
+
 }  // namespace
 }  // namespace rad
