@@ -50,8 +50,10 @@ struct VertexCopy {
 /// point once per triangle around it (six times), and each midpoint of an edge between two of
 /// its triangles twice once both split it, but one of them gathers and the others copy its gain
 /// after the shot. Found by position: among the initial vertices, the lowest (polygon, vertex)
-/// gathers; a midpoint made on a polygon's edge copies the one first made there, if that one's
-/// polygon received the same shot (else it gathers for itself, from then on).
+/// gathers; a midpoint made on a polygon's edge copies the one that gathers there, if that one's
+/// polygon received the same shot (else it gathers for itself, from then on, and the lowest
+/// (polygon, vertex) of those that gather at a place is the one later midpoints copy). A copy's
+/// source is never a copy.
 struct SharedVertices {
   struct Place {  // a position in a cluster, bit for bit (-0 as +0)
     uint32_t cluster, x, y, z;
@@ -65,7 +67,7 @@ struct SharedVertices {
   };
   /// Per polygon: its copies, in vertex order.
   std::vector<std::vector<VertexCopy>> copies;
-  /// The midpoint that gathers at each place on polygon edges where one was made.
+  /// The midpoint later ones copy at each place on polygon edges where one was made.
   std::unordered_map<Place, Gatherer, PlaceHash> edge_midpoints;
 };
 
