@@ -38,7 +38,7 @@ void set_material(SolverState& s, int32_t object, const Material& m, const Visib
   std::vector<uint32_t> which;
   for (uint32_t t = o.first_triangle; t < o.first_triangle + o.triangle_count; ++t)
     which.push_back(t);
-  refine_polygons(s, nullptr, false, d_rho, vis, which);
+  refine_after_edit(s, d_rho, vis, which);
   for (uint32_t t = o.first_triangle; t < o.first_triangle + o.triangle_count; ++t) {
     s.unshot_energy[t] = polygon_unshot_energy(s.mesh.polygons[t]);
   }

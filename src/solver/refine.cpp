@@ -45,28 +45,28 @@ Vec3 regather_shots(const SolverState& s, const Vec3& x, uint32_t polygon, bool 
   return all;
 }
 
-void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,
-                       bool major) {
-  refine_polygons(s, &src, major, Vec3(0.0f), vis, s.receivers);
-}
+namespace {
 
-void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Vec3& d_rho,
-                     const VisibilityBackend& vis, std::span<const uint32_t> polygons) {
+// The splitting both refinements share. `after_shot`: the polygons received the shot just made
+// (they may copy each other's new midpoints, and the options' midpoint rule applies); else every
+// new midpoint is computed. compute(x, scratch) sets a computed new midpoint's state.
+template <typename Compute>
+void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
+            const Compute& compute) {
   const Triangles& tris = s.hierarchy->triangles;
   // Only the given polygons are looked at: a shot of a Lights list reaches a few rooms of a
   // building, and per-polygon work over the whole scene would cost more than the shot.
   const size_t np = polygons.size();
   const float limit = s.options.subdivision_threshold * s.radiosity_scale;
   const float min_split_size = 2.0f * s.min_size;  // children keep sizes >= min_size
-  const GatherSettings settings = gather_settings(s);
-  const bool all_exact = s.options.midpoints == MidpointRule::Exact || src == nullptr;
+  const bool all_exact = s.options.midpoints == MidpointRule::Exact || !after_shot;
 
   std::vector<std::vector<uint32_t>> check(np), next(np);
   std::vector<std::vector<ExactVertex>> exact(np);
   std::vector<std::vector<EdgeMidpoint>> on_edges(np);
   SharedVertices& shared = s.shared;
   // Copies take the current shot's state from a vertex that has it: only after a shot.
-  const bool may_copy = src != nullptr && all_exact;
+  const bool may_copy = after_shot && all_exact;
   std::vector<uint64_t> splits(np, 0), interpolated(np, 0);
 
   std::vector<ExactVertex> flat;
@@ -159,38 +159,7 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
     parallel_gather(flat.size(), 16, s.stats, [&](size_t begin, size_t end, GatherScratch& sc) {
       for (size_t i = begin; i != end; ++i) {
         const ExactVertex& x = flat[i];
-        if (x.from_polygon >= 0) continue;
-        PolygonMesh& m = s.mesh.polygons[x.polygon];
-        const Vec3 rho = s.material_of(x.polygon).reflectance;
-        const MeshVertex &a = m.vertices[x.a], &b = m.vertices[x.b];
-        MeshVertex& mid = m.vertices[x.vertex];
-        if (src == nullptr) {  // between shots: every earlier shot gathered again, exact
-          mid.irradiance =
-              regather_shots(s, mid.position, x.polygon, false, vis, settings, sc, &mid.major);
-          // Unshot: the edit's part d_rho * H exact, the rest interpolated (transient).
-          mid.unshot = (a.unshot - d_rho * a.irradiance + b.unshot - d_rho * b.irradiance) * 0.5f +
-                       d_rho * mid.irradiance;
-          mid.shot = Vec3(0.0f);
-          continue;
-        }
-        const Vec3 dh =
-            gather_from_source(mid.position, tris.normal[x.polygon], tris.centroid(x.polygon), *src,
-                               vis, receiver_settings(settings, s, x.polygon), sc);
-        Vec3 major_h(0.0f);
-        regather_shots(s, mid.position, x.polygon, true, vis, settings, sc, &major_h);
-        // Earlier minor shots: interpolated from the edge's ends (SPEC §5).
-        Vec3 minor_a = a.irradiance - a.shot - a.major;
-        Vec3 minor_b = b.irradiance - b.shot - b.major;
-        if (major) {  // the ends' major part includes this shot's
-          minor_a += a.shot;
-          minor_b += b.shot;
-        }
-        const Vec3 earlier_h = (minor_a + minor_b) * 0.5f + major_h;
-        const Vec3 earlier_u = (a.unshot - rho * a.shot + b.unshot - rho * b.shot) * 0.5f;
-        mid.irradiance = earlier_h + dh;
-        mid.unshot = earlier_u + rho * dh;
-        mid.shot = dh;
-        mid.major = major ? major_h + dh : major_h;
+        if (x.from_polygon < 0) compute(x, sc);
       }
     });
     // 4. The copies take the state of the vertex they share (made in step 3, or earlier and
@@ -214,6 +183,55 @@ void refine_polygons(SolverState& s, const ShotSource* src, bool major, const Ve
     s.stats.subdivisions += splits[i];
     s.stats.interpolated_midpoints += interpolated[i];
   }
+}
+
+}  // namespace
+
+void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,
+                       bool major) {
+  const Triangles& tris = s.hierarchy->triangles;
+  const GatherSettings settings = gather_settings(s);
+  refine(s, s.receivers, true, [&](const ExactVertex& x, GatherScratch& sc) {
+    PolygonMesh& m = s.mesh.polygons[x.polygon];
+    const Vec3 rho = s.material_of(x.polygon).reflectance;
+    const MeshVertex &a = m.vertices[x.a], &b = m.vertices[x.b];
+    MeshVertex& mid = m.vertices[x.vertex];
+    const Vec3 dh =
+        gather_from_source(mid.position, tris.normal[x.polygon], tris.centroid(x.polygon), src, vis,
+                           receiver_settings(settings, s, x.polygon), sc);
+    Vec3 major_h(0.0f);
+    regather_shots(s, mid.position, x.polygon, true, vis, settings, sc, &major_h);
+    // Earlier minor shots: interpolated from the edge's ends (SPEC §5).
+    Vec3 minor_a = a.irradiance - a.shot - a.major;
+    Vec3 minor_b = b.irradiance - b.shot - b.major;
+    if (major) {  // the ends' major part includes this shot's
+      minor_a += a.shot;
+      minor_b += b.shot;
+    }
+    const Vec3 earlier_h = (minor_a + minor_b) * 0.5f + major_h;
+    const Vec3 earlier_u = (a.unshot - rho * a.shot + b.unshot - rho * b.shot) * 0.5f;
+    mid.irradiance = earlier_h + dh;
+    mid.unshot = earlier_u + rho * dh;
+    mid.shot = dh;
+    mid.major = major ? major_h + dh : major_h;
+  });
+}
+
+void refine_after_edit(SolverState& s, const Vec3& d_rho, const VisibilityBackend& vis,
+                       std::span<const uint32_t> polygons) {
+  const GatherSettings settings = gather_settings(s);
+  refine(s, polygons, false, [&](const ExactVertex& x, GatherScratch& sc) {
+    PolygonMesh& m = s.mesh.polygons[x.polygon];
+    const MeshVertex &a = m.vertices[x.a], &b = m.vertices[x.b];
+    MeshVertex& mid = m.vertices[x.vertex];
+    // Every earlier shot gathered again: H exact.
+    mid.irradiance =
+        regather_shots(s, mid.position, x.polygon, false, vis, settings, sc, &mid.major);
+    // Unshot: the edit's part d_rho * H exact, the rest interpolated (transient).
+    mid.unshot = (a.unshot - d_rho * a.irradiance + b.unshot - d_rho * b.irradiance) * 0.5f +
+                 d_rho * mid.irradiance;
+    mid.shot = Vec3(0.0f);
+  });
 }
 
 }  // namespace rad
