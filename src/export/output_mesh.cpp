@@ -23,7 +23,7 @@ std::shared_ptr<const MeshGeometry> OutputMeshBuilder::update(const SolverState&
     c.elements = polys[p].elements.size();
     any = true;
     const uint32_t k = clusters.cluster_of[p];
-    if (clusters.planar[k] && clusters.polygon_count(k) > 1) {
+    if (shares_vertices(clusters, p)) {
       clusters_changed.push_back(k);
     } else {
       c.faces = triangulate_leaves(polys[p], uint32_t(p));

@@ -5,6 +5,8 @@
 #include <cstring>
 #include <tuple>
 
+#include "core/position_bits.h"
+
 namespace rad {
 
 namespace {
@@ -12,7 +14,7 @@ namespace {
 std::vector<std::array<uint32_t, 3>> weld_corners(const Triangles& t) {
   struct Key {
     int32_t object;
-    uint32_t x, y, z;
+    PositionBits position;
     uint32_t corner;  // 3 * triangle + k
   };
   std::vector<Key> keys(t.size() * 3);
@@ -20,18 +22,17 @@ std::vector<std::array<uint32_t, 3>> weld_corners(const Triangles& t) {
     for (int k = 0; k < 3; ++k) {
       Key& key = keys[3 * i + size_t(k)];
       key.object = t.object[i];
-      const Vec3 p = t.corners[i][size_t(k)] + Vec3(0.0f);  // -0 and +0 weld
-      std::memcpy(&key.x, &p.x, 4), std::memcpy(&key.y, &p.y, 4), std::memcpy(&key.z, &p.z, 4);
+      key.position = position_bits(t.corners[i][size_t(k)]);
       key.corner = uint32_t(3 * i + size_t(k));
     }
   }
-  auto tie = [](const Key& a) { return std::make_tuple(a.object, a.x, a.y, a.z, a.corner); };
+  auto tie = [](const Key& a) { return std::tie(a.object, a.position, a.corner); };
   std::sort(keys.begin(), keys.end(), [&](const Key& a, const Key& b) { return tie(a) < tie(b); });
   std::vector<std::array<uint32_t, 3>> out(t.size());
   uint32_t id = 0;
   for (size_t i = 0; i < keys.size(); ++i) {
-    if (i > 0 && (keys[i].object != keys[i - 1].object || keys[i].x != keys[i - 1].x ||
-                  keys[i].y != keys[i - 1].y || keys[i].z != keys[i - 1].z)) {
+    if (i > 0 &&
+        (keys[i].object != keys[i - 1].object || keys[i].position != keys[i - 1].position)) {
       ++id;
     }
     out[keys[i].corner / 3][keys[i].corner % 3] = id;

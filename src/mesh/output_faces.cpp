@@ -1,26 +1,11 @@
 #include "mesh/output_faces.h"
 
-#include <cstring>
-
 namespace rad {
 
-SeamVertices::Key SeamVertices::key(const Vec3& x) {
-  const Vec3 q = x + Vec3(0.0f);  // -0 as +0
-  Key k;
-  std::memcpy(&k.x, &q.x, 4), std::memcpy(&k.y, &q.y, 4), std::memcpy(&k.z, &q.z, 4);
-  return k;
-}
-
-size_t SeamVertices::KeyHash::operator()(const Key& k) const {
-  uint64_t h = (uint64_t(k.x) << 32 | k.y) * 0x9e3779b97f4a7c15ull;
-  h ^= (uint64_t(k.z) + 0x632be59bd9b4e019ull) + (h << 6) + (h >> 2);
-  return size_t(h ^ (h >> 31));
-}
-
-void SeamVertices::add(const Vec3& x, VertexRef v) { at_.try_emplace(key(x), v); }
+void SeamVertices::add(const Vec3& x, VertexRef v) { at_.try_emplace(position_bits(x), v); }
 
 const VertexRef* SeamVertices::find(const Vec3& x) const {
-  auto it = at_.find(key(x));
+  auto it = at_.find(position_bits(x));
   return it == at_.end() ? nullptr : &it->second;
 }
 

@@ -7,6 +7,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "core/position_bits.h"
 #include "mesh/patch_mesh.h"
 
 namespace rad {
@@ -29,15 +30,7 @@ class SeamVertices {
   bool empty() const { return at_.empty(); }
 
  private:
-  struct Key {
-    uint32_t x, y, z;
-    bool operator==(const Key&) const = default;
-  };
-  struct KeyHash {
-    size_t operator()(const Key& k) const;
-  };
-  static Key key(const Vec3& x);
-  std::unordered_map<Key, VertexRef, KeyHash> at_;
+  std::unordered_map<PositionBits, VertexRef, PositionBitsHash> at_;
 };
 
 /// The faces to write for one polygon. Indices below the polygon's vertex count name its

@@ -118,16 +118,12 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   for (size_t p = 0; p < np; ++p) read_polygon(r, mesh.polygons[p], copies[p], np);
   // A copy's source gathers: it is a vertex, and no copy itself (a chain would have the shot
   // read a gain while another thread writes it).
-  auto is_copy = [&](uint32_t p, uint32_t v) {
-    const std::vector<VertexCopy>& cs = copies[p];
-    auto it = std::lower_bound(cs.begin(), cs.end(), v,
-                               [](const VertexCopy& c, uint32_t x) { return c.vertex < x; });
-    return it != cs.end() && it->vertex == v;
-  };
-  for (const std::vector<VertexCopy>& cs : copies) {
+  SharedVertices shared;
+  shared.copies = std::move(copies);
+  for (const std::vector<VertexCopy>& cs : shared.copies) {
     for (const VertexCopy& c : cs) {
       if (c.from_vertex >= mesh.polygons[c.from_polygon].vertex_count() ||
-          is_copy(c.from_polygon, c.from_vertex)) {
+          shared.is_copy(c.from_polygon, c.from_vertex)) {
         r.fail("a vertex copied from no vertex, or from a copy");
       }
     }
@@ -157,7 +153,7 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   std::vector<uint32_t> initial(np);
   for (size_t p = 0; p < np; ++p) initial[p] = uint32_t(s.mesh.polygons[p].vertex_count());
   s.mesh = std::move(mesh);
-  s.shared.copies = std::move(copies);
+  s.shared.copies = std::move(shared.copies);
   find_edge_midpoints(s, initial);
   s.materials = std::move(materials);
   s.unshot_energy = std::move(unshot_energy);

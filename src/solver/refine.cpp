@@ -84,7 +84,7 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
         on_edges[i].clear();
         if (!first_pass && check[i].empty()) continue;
         const uint32_t p = polygons[i];
-        const bool sharing = bool(shared_place(s.clusters, p, Vec3(0.0f)));
+        const bool sharing = shares_vertices(s.clusters, p);
         PolygonMesh& m = s.mesh.polygons[p];
         const Material& mat = s.material_of(p);
         auto B = [&](uint32_t v) {

@@ -144,19 +144,25 @@ void share_unshot_totals(SolverState& s) {
 }
 
 size_t SharedVertices::PlaceHash::operator()(const Place& k) const {
-  uint64_t h = (uint64_t(k.cluster) << 32 | k.x) * 0x9e3779b97f4a7c15ull;
-  h ^= (uint64_t(k.y) << 32 | k.z) + 0x632be59bd9b4e019ull + (h << 6) + (h >> 2);
-  return size_t(h ^ (h >> 31));
+  return hash_position_bits(k.position, k.cluster);
+}
+
+bool SharedVertices::is_copy(uint32_t p, uint32_t v) const {
+  const std::vector<VertexCopy>& cs = copies[p];
+  auto it = std::lower_bound(cs.begin(), cs.end(), v,
+                             [](const VertexCopy& c, uint32_t x) { return c.vertex < x; });
+  return it != cs.end() && it->vertex == v;
+}
+
+bool shares_vertices(const Clusters& clusters, size_t p) {
+  const uint32_t c = clusters.cluster_of[p];
+  return clusters.planar[c] && clusters.polygon_count(c) > 1;
 }
 
 std::optional<SharedVertices::Place> shared_place(const Clusters& clusters, size_t p,
                                                   const Vec3& x) {
-  const uint32_t c = clusters.cluster_of[p];
-  if (!clusters.planar[c] || clusters.polygon_count(c) < 2) return std::nullopt;
-  const Vec3 q = x + Vec3(0.0f);  // -0 as +0
-  SharedVertices::Place k{c, 0, 0, 0};
-  std::memcpy(&k.x, &q.x, 4), std::memcpy(&k.y, &q.y, 4), std::memcpy(&k.z, &q.z, 4);
-  return k;
+  if (!shares_vertices(clusters, p)) return std::nullopt;
+  return SharedVertices::Place{clusters.cluster_of[p], position_bits(x)};
 }
 
 bool on_triangle_edge(const std::array<Vec3, 3>& c, const Vec3& x) {
@@ -171,18 +177,12 @@ void find_edge_midpoints(SolverState& s, std::span<const uint32_t> initial_verti
   SharedVertices& sh = s.shared;
   sh.edge_midpoints.clear();
   const Triangles& tris = s.hierarchy->triangles;
-  std::vector<uint32_t> copied;
   for (uint32_t p = 0; p < s.mesh.polygons.size(); ++p) {
     const PolygonMesh& m = s.mesh.polygons[p];
-    copied.clear();
-    for (const VertexCopy& c : sh.copies[p]) copied.push_back(c.vertex);
     for (uint32_t v = initial_vertices[p]; v < m.vertex_count(); ++v) {
       const Vec3& x = m.vertices[v].position;
       const auto place = shared_place(s.clusters, p, x);
-      if (!place || !on_triangle_edge(tris.corners[p], x) ||
-          std::binary_search(copied.begin(), copied.end(), v)) {
-        continue;
-      }
+      if (!place || !on_triangle_edge(tris.corners[p], x) || sh.is_copy(p, v)) continue;
       sh.edge_midpoints.try_emplace(*place, SharedVertices::Gatherer{p, v});  // lowest first
     }
   }
@@ -203,9 +203,7 @@ SharedVertices find_shared_vertices(const Mesh& mesh, const Clusters& clusters) 
         keys.push_back({*k, uint32_t(p), v});
     }
   }
-  auto tie = [](const Key& k) {
-    return std::make_tuple(k.place.cluster, k.place.x, k.place.y, k.place.z, k.polygon, k.vertex);
-  };
+  auto tie = [](const Key& k) { return std::tie(k.place, k.polygon, k.vertex); };
   std::sort(keys.begin(), keys.end(), [&](const Key& a, const Key& b) { return tie(a) < tie(b); });
   for (size_t i = 1, first = 0; i < keys.size(); ++i) {
     if (!(keys[i].place == keys[first].place)) {

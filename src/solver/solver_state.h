@@ -9,6 +9,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "core/position_bits.h"
 #include "hierarchy/hierarchy.h"
 #include "mesh/patch_mesh.h"
 #include "solver/clusters.h"
@@ -55,9 +56,11 @@ struct VertexCopy {
 /// (polygon, vertex) of those that gather at a place is the one later midpoints copy). A copy's
 /// source is never a copy.
 struct SharedVertices {
-  struct Place {  // a position in a cluster, bit for bit (-0 as +0)
-    uint32_t cluster, x, y, z;
+  struct Place {  // a position in a cluster
+    uint32_t cluster;
+    PositionBits position;
     bool operator==(const Place&) const = default;
+    auto operator<=>(const Place&) const = default;
   };
   struct PlaceHash {
     size_t operator()(const Place& k) const;
@@ -67,6 +70,8 @@ struct SharedVertices {
   };
   /// Per polygon: its copies, in vertex order.
   std::vector<std::vector<VertexCopy>> copies;
+  /// Whether vertex v of polygon p copies another's gain.
+  bool is_copy(uint32_t p, uint32_t v) const;
   /// The midpoint later ones copy at each place on polygon edges where one was made.
   std::unordered_map<Place, Gatherer, PlaceHash> edge_midpoints;
 };
@@ -160,8 +165,11 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options);
 /// The initial mesh's vertices shared within planar clusters.
 SharedVertices find_shared_vertices(const Mesh& mesh, const Clusters& clusters);
 
-/// Where vertex position `x` of polygon p is shared, if it may be: p's cluster is planar with
-/// other polygons. (Whether x lies on p's edges is the caller's to say: on_triangle_edge.)
+/// Whether polygon p may share vertices: its cluster is planar with other polygons.
+bool shares_vertices(const Clusters& clusters, size_t p);
+
+/// Where vertex position `x` of polygon p is shared, if it may be (shares_vertices). (Whether x
+/// lies on p's edges is the caller's to say: on_triangle_edge.)
 std::optional<SharedVertices::Place> shared_place(const Clusters& clusters, size_t p,
                                                   const Vec3& x);
 

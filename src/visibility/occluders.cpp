@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "hierarchy/triangle_adjacency.h"
+#include "visibility/agreement.h"
 
 namespace rad {
 
@@ -113,7 +114,7 @@ std::vector<std::array<Vec3, 3>> merged_region(const Hierarchy& h,
   normal = glm::normalize(normal);
   // Every corner in one plane, within the distance below which the backends may disagree anyway.
   const DVec3 origin(t.corners[tris[0]][0]);
-  const double tolerance = 1e-6 * double(h.bounds.magnitude());
+  const double tolerance = ambiguity_limit(h);
   for (uint32_t i : tris)
     for (const Vec3& p : t.corners[i])
       if (std::abs(glm::dot(DVec3(p) - origin, normal)) > tolerance) return {};
@@ -141,7 +142,8 @@ std::optional<Hierarchy> merge_flat_regions(const Hierarchy& h) {
   const std::vector<uint32_t>& starts = found.first;
 
   // Per triangle: the region it was merged into (its replacement goes where the region's
-  // lowest triangle was, which keeps every object's triangles contiguous), or -1.
+  // lowest triangle, its seed and first, was, which keeps every object's triangles
+  // contiguous), or -1.
   std::vector<int32_t> merged_into(t.size(), -1);
   std::vector<uint32_t> lowest;
   std::vector<std::vector<std::array<Vec3, 3>>> replacement;
@@ -151,7 +153,7 @@ std::optional<Hierarchy> merge_flat_regions(const Hierarchy& h) {
     std::vector<std::array<Vec3, 3>> out = merged_region(h, v, tris);
     if (out.empty()) continue;
     for (uint32_t i : tris) merged_into[i] = int32_t(replacement.size());
-    lowest.push_back(*std::min_element(tris.begin(), tris.end()));
+    lowest.push_back(tris.front());
     replacement.push_back(std::move(out));
   }
   if (replacement.empty()) return std::nullopt;
@@ -162,20 +164,22 @@ std::optional<Hierarchy> merge_flat_regions(const Hierarchy& h) {
   m.bounds = h.bounds, m.dropped_degenerate = h.dropped_degenerate;
   std::vector<uint32_t> new_start(t.size() + 1, 0);
   Triangles& out = m.triangles;
-  auto add = [&](const std::array<Vec3, 3>& c, int32_t object) {
-    const Vec3 n = glm::cross(c[1] - c[0], c[2] - c[0]);
+  auto add = [&](const std::array<Vec3, 3>& c, const Vec3& normal, float area, int32_t object) {
     out.corners.push_back(c);
-    out.normal.push_back(glm::normalize(n));
-    out.area.push_back(0.5f * glm::length(n));
+    out.normal.push_back(normal);
+    out.area.push_back(area);
     out.object.push_back(object);
   };
   for (size_t i = 0; i < t.size(); ++i) {
     new_start[i] = uint32_t(out.size());
     const int32_t r = merged_into[i];
     if (r < 0) {
-      add(t.corners[i], t.object[i]);
+      add(t.corners[i], t.normal[i], t.area[i], t.object[i]);
     } else if (lowest[size_t(r)] == i) {
-      for (const auto& c : replacement[size_t(r)]) add(c, t.object[i]);
+      for (const auto& c : replacement[size_t(r)]) {
+        const Vec3 n = glm::cross(c[1] - c[0], c[2] - c[0]);
+        add(c, glm::normalize(n), 0.5f * glm::length(n), t.object[i]);
+      }
     }
   }
   new_start[t.size()] = uint32_t(out.size());

@@ -42,7 +42,7 @@ TEST(Clusters, AreSplitToTheAreaAskedForWhateverTheTessellation) {
       }
     }
     // k = 1: the two triangles (each larger than 0.3) stand alone; finer: four quarters.
-    EXPECT_LE(c.size(), k == 1 ? 2u : 4u) << k;
+    EXPECT_EQ(c.size(), k == 1 ? 2u : 4u) << k;
     for (size_t t = 0; t < h.triangles.size(); ++t) {
       const uint32_t ci = c.cluster_of[t];
       bool found = false;
