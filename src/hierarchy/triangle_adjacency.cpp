@@ -117,7 +117,8 @@ std::vector<BoundaryEdge> boundary_edges(const Triangles& t,
   return bnd;
 }
 
-void outline(const std::vector<BoundaryEdge>& bnd, std::vector<Vec3>& ea, std::vector<Vec3>& eb) {
+void outline(const std::vector<BoundaryEdge>& bnd, double tolerance, std::vector<Vec3>& ea,
+             std::vector<Vec3>& eb) {
   // Merge: a vertex with exactly one boundary edge in and one out, on a straight line, is
   // dropped. Chains are followed from edges whose start cannot be dropped.
   std::vector<std::pair<uint32_t, uint32_t>> out_of;  // (start vertex, edge)
@@ -136,10 +137,15 @@ void outline(const std::vector<BoundaryEdge>& bnd, std::vector<Vec3>& ea, std::v
     return std::upper_bound(ins.begin(), ins.end(), vertex) -
            std::lower_bound(ins.begin(), ins.end(), vertex);
   };
-  auto straight = [](const Vec3& a, const Vec3& b, const Vec3& c) {
+  // Straight on: turning by under 1e-5 radian, or b within `tolerance` of the line a-c (a
+  // turned or moved scene leaves a straight edge's points a rounding error of their
+  // coordinates off it, which for short edges is a larger angle).
+  auto straight = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
     const Vec3 u = b - a, w = c - b;
-    return glm::dot(u, w) > 0.0f &&
-           glm::length(glm::cross(u, w)) <= 1e-5f * glm::length(u) * glm::length(w);
+    if (!(glm::dot(u, w) > 0.0f)) return false;
+    if (glm::length(glm::cross(u, w)) <= 1e-5f * glm::length(u) * glm::length(w)) return true;
+    const DVec3 ab = DVec3(b) - DVec3(a), ac = DVec3(c) - DVec3(a);
+    return glm::length(glm::cross(ab, ac)) <= tolerance * glm::length(ac);
   };
   // The edge arriving at each vertex whose in-count is 1.
   std::vector<std::pair<uint32_t, uint32_t>> arriving;

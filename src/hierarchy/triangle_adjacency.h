@@ -39,7 +39,9 @@ std::vector<BoundaryEdge> boundary_edges(const Triangles& t,
                                          const std::vector<std::array<uint32_t, 3>>& v,
                                          const std::vector<uint32_t>& tris);
 
-/// The boundary edges with collinear runs merged, appended to ea -> eb.
-void outline(const std::vector<BoundaryEdge>& bnd, std::vector<Vec3>& ea, std::vector<Vec3>& eb);
+/// The boundary edges with straight runs merged, appended to ea -> eb: a corner is dropped when
+/// the run turns there by under 1e-5 radian or it lies within `tolerance` of the run's line.
+void outline(const std::vector<BoundaryEdge>& bnd, double tolerance, std::vector<Vec3>& ea,
+             std::vector<Vec3>& eb);
 
 }  // namespace rad

@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "hierarchy/triangle_adjacency.h"
+#include "visibility/agreement.h"
 
 namespace rad {
 
@@ -88,6 +89,7 @@ Clusters make_clusters(const Hierarchy& h, double max_area) {
   // within 0.1 degree is planar. (Growing planar regions first fragments a finely tessellated
   // sphere, whose neighbouring quads lie within a degree of each other, into thousands.)
   const Regions found = find_regions(t, kCurvedCos);
+  const double tolerance = ambiguity_limit(h);  // rounding of the scene's coordinates
   const std::vector<std::array<uint32_t, 3>>& v = found.corners;
   const std::vector<uint32_t>& flat = found.triangles;
   const std::vector<uint32_t>& starts = found.first;
@@ -143,7 +145,7 @@ Clusters make_clusters(const Hierarchy& h, double max_area) {
       const bool planar = region_planar[r] || tris.size() == 1;
       k.first.push_back(uint32_t(k.polygons.size()));
       const std::vector<BoundaryEdge> bnd = boundary_edges(t, v, tris);
-      outline(bnd, k.edge_a, k.edge_b);
+      outline(bnd, tolerance, k.edge_a, k.edge_b);
       if (!planar) interior_vertices(t, v, tris, bnd, k.interior);
       k.interior_first.push_back(uint32_t(k.interior.size()));
       k.edge_first.push_back(uint32_t(k.edge_a.size()));

@@ -42,10 +42,10 @@ std::vector<Vec3> single_loop(const std::vector<Vec3>& ea, const std::vector<Vec
 }
 
 // Ear clipping of a simple polygon given by its corners in order, in the plane of `normal`
-// (its winding around normal is kept), corners within `tolerance` of a straight line dropped;
-// appends the triangles to out. False when no ear is found (the loop is not simple).
-bool clip_ears(std::vector<Vec3> loop, const DVec3& normal, double tolerance,
-               std::vector<std::array<Vec3, 3>>& out) {
+// (its winding around normal is kept; outline() has dropped the corners where it runs
+// straight on); appends the triangles to out. False when no ear is found (the loop is not
+// simple).
+bool clip_ears(std::vector<Vec3> loop, const DVec3& normal, std::vector<std::array<Vec3, 3>>& out) {
   // Projected on the axis plane where the normal is largest, signed so the loop turns left.
   const DVec3 an = glm::abs(normal);
   const int drop = an.x >= an.y && an.x >= an.z ? 0 : (an.y >= an.z ? 1 : 2);
@@ -58,20 +58,6 @@ bool clip_ears(std::vector<Vec3> loop, const DVec3& normal, double tolerance,
   double size = 0.0;
   for (const Vec3& p : loop) size = std::max(size, double(glm::length(p - loop[0])));
   const double eps = 1e-9 * size * size;
-  // Corners within `tolerance` of the line through their neighbours are no corners (a turned
-  // or moved scene leaves a straight edge's points a rounding error of their coordinates off it).
-  for (size_t i = 0; i < loop.size() && loop.size() > 3;) {
-    const size_t m = loop.size();
-    const DVec3 a(loop[(i + m - 1) % m]), b(loop[i]), c(loop[(i + 1) % m]);
-    const double base = glm::length(c - a);
-    if (base > 0.0 && glm::length(glm::cross(b - a, c - a)) <= tolerance * base &&
-        glm::dot(b - a, c - b) > 0.0) {
-      loop.erase(loop.begin() + long(i));
-      i = i > 0 ? i - 1 : 0;
-    } else {
-      ++i;
-    }
-  }
   while (loop.size() > 3) {
     const size_t m = loop.size();
     bool clipped = false;
@@ -119,11 +105,11 @@ std::vector<std::array<Vec3, 3>> merged_region(const Hierarchy& h,
     for (const Vec3& p : t.corners[i])
       if (std::abs(glm::dot(DVec3(p) - origin, normal)) > tolerance) return {};
   std::vector<Vec3> ea, eb;
-  outline(boundary_edges(t, v, tris), ea, eb);
+  outline(boundary_edges(t, v, tris), tolerance, ea, eb);
   const std::vector<Vec3> loop = single_loop(ea, eb);
   if (loop.empty()) return {};
   std::vector<std::array<Vec3, 3>> out;
-  if (!clip_ears(loop, normal, tolerance, out) || out.size() >= tris.size()) return {};
+  if (!clip_ears(loop, normal, out) || out.size() >= tris.size()) return {};
   // The same area: no hole, fold or overlap the loop alone would miss.
   double merged = 0.0;
   for (const auto& c : out)
