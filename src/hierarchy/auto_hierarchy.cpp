@@ -27,6 +27,10 @@ double volume(const Aabb& b, float floor) {
 struct Regrouper {
   const Hierarchy& h;
   SceneDescription out;
+  // Without triangles, each Pure of `out` only names the Pure of h it is (`source`): what
+  // placing the regrouped tree straight from h (Placer) needs.
+  bool with_triangles = true;
+  std::vector<int32_t> source;  // per object of `out`: the Pure of h, or -1
 
   // `mode` names the option in the error: a Lights list names objects that regrouping drops.
   Regrouper(const Hierarchy& hierarchy, const char* mode) : h(hierarchy) {
@@ -51,9 +55,13 @@ struct Regrouper {
     p.material = o.material;
     if (!o.casts_shadows) p.flags.casts_shadows = false;
     if (!o.receives_shadows) p.flags.receives_shadows = false;
-    p.triangles.assign(h.triangles.corners.begin() + o.first_triangle,
-                       h.triangles.corners.begin() + o.first_triangle + o.triangle_count);
+    if (with_triangles) {
+      p.triangles.assign(h.triangles.corners.begin() + o.first_triangle,
+                         h.triangles.corners.begin() + o.first_triangle + o.triangle_count);
+    }
     out.objects.push_back(std::move(p));
+    source.resize(out.objects.size(), -1);
+    source.back() = i;
     return int32_t(out.objects.size()) - 1;
   }
 
@@ -64,6 +72,7 @@ struct Regrouper {
     g.kind = kind;
     g.children = std::move(children);
     out.objects.push_back(std::move(g));
+    source.resize(out.objects.size(), -1);
     return int32_t(out.objects.size()) - 1;
   }
 
@@ -117,12 +126,77 @@ struct Regrouper {
   }
 };
 
+// What build_hierarchy makes of a regrouped description, made from the hierarchy it was
+// regrouped from: each Pure's triangles, normals and areas copied in the new depth-first order
+// rather than computed again (a second build was a fifth of a million-triangle model's import).
+// A regrouped scene has no transforms, copies or Lights lists, and its Pures carry their flags.
+struct Placer {
+  const Hierarchy& from;
+  const SceneDescription& d;
+  const std::vector<int32_t>& source;
+  Hierarchy& out;
+
+  int32_t add(int32_t di, int32_t parent) {
+    const ObjectDescription& o = d.objects[size_t(di)];
+    const int32_t id = int32_t(out.objects.size());
+    out.objects.push_back({});
+    out.objects.back().name = o.name;
+    out.objects.back().kind = o.kind;
+    out.objects.back().loc = o.loc;
+    out.objects.back().parent = parent;
+    const uint32_t first = uint32_t(out.triangles.size());
+    Aabb box;
+    if (o.kind == ObjectKind::Pure) {
+      const SceneObject& p = from.objects[size_t(source[size_t(di)])];
+      const Triangles& f = from.triangles;
+      Triangles& t = out.triangles;
+      const auto b = long(p.first_triangle), e = b + long(p.triangle_count);
+      t.corners.insert(t.corners.end(), f.corners.begin() + b, f.corners.begin() + e);
+      t.normal.insert(t.normal.end(), f.normal.begin() + b, f.normal.begin() + e);
+      t.area.insert(t.area.end(), f.area.begin() + b, f.area.begin() + e);
+      t.object.resize(t.corners.size(), id);
+      SceneObject& s = out.objects.back();
+      s.material = p.material;
+      s.casts_shadows = p.casts_shadows;
+      s.receives_shadows = p.receives_shadows;
+      box = p.box;
+    } else {
+      for (const int32_t c : o.children) {
+        const int32_t child = add(c, id);
+        out.objects[size_t(id)].children.push_back(child);
+        box.extend(out.objects[size_t(child)].box);
+      }
+    }
+    SceneObject& s = out.objects[size_t(id)];
+    s.box = box;
+    s.first_triangle = first;
+    s.triangle_count = uint32_t(out.triangles.size()) - first;
+    return id;
+  }
+};
+
 std::vector<int32_t> pures_of(const Hierarchy& h) {
   std::vector<int32_t> p;
   for (size_t i = 0; i < h.objects.size(); ++i) {
     if (h.objects[i].kind == ObjectKind::Pure) p.push_back(int32_t(i));  // never empty (built)
   }
   return p;
+}
+
+// h's Pures regrouped as `mode` (Automatic or Flat) says; see automatic_hierarchy in the header.
+Regrouper regrouped_pures(const Hierarchy& h, HierarchyMode mode, bool with_triangles) {
+  Regrouper r(h, mode == HierarchyMode::Automatic ? "auto" : "flat");
+  r.with_triangles = with_triangles;
+  const std::vector<int32_t> pures = pures_of(h);
+  if (pures.empty()) return r;
+  if (mode == HierarchyMode::Automatic) {
+    r.out.roots.push_back(r.build(pures));
+  } else {
+    std::vector<int32_t> parts;
+    for (const int32_t i : pures) parts.push_back(r.pure(i));
+    r.out.roots.push_back(r.group(ObjectKind::Composite, std::move(parts)));
+  }
+  return r;
 }
 
 }  // namespace
@@ -151,18 +225,11 @@ HierarchyMode default_hierarchy_mode(const std::string& scene_path) {
 }
 
 SceneDescription automatic_hierarchy(const Hierarchy& h) {
-  Regrouper r(h, "auto");
-  const std::vector<int32_t> pures = pures_of(h);
-  if (!pures.empty()) r.out.roots.push_back(r.build(pures));
-  return std::move(r.out);
+  return std::move(regrouped_pures(h, HierarchyMode::Automatic, true).out);
 }
 
 SceneDescription flat_hierarchy(const Hierarchy& h) {
-  Regrouper r(h, "flat");
-  std::vector<int32_t> parts;
-  for (int32_t i : pures_of(h)) parts.push_back(r.pure(i));
-  if (!parts.empty()) r.out.roots.push_back(r.group(ObjectKind::Composite, std::move(parts)));
-  return std::move(r.out);
+  return std::move(regrouped_pures(h, HierarchyMode::Flat, true).out);
 }
 
 SceneDescription regroup(const SceneDescription& scene, HierarchyMode mode) {
@@ -171,15 +238,39 @@ SceneDescription regroup(const SceneDescription& scene, HierarchyMode mode) {
   return mode == HierarchyMode::Automatic ? automatic_hierarchy(h) : flat_hierarchy(h);
 }
 
+Hierarchy regrouped_hierarchy(const Hierarchy& h, HierarchyMode mode) {
+  if (mode == HierarchyMode::AsRead) return h;
+  const Regrouper r = regrouped_pures(h, mode, false);
+  Hierarchy out;
+  out.scene_name = h.scene_name;
+  out.source_path = h.source_path;
+  out.dropped_degenerate = h.dropped_degenerate;
+  out.objects.reserve(r.out.objects.size());
+  out.triangles.corners.reserve(h.triangles.size());
+  out.triangles.normal.reserve(h.triangles.size());
+  out.triangles.area.reserve(h.triangles.size());
+  out.triangles.object.reserve(h.triangles.size());
+  Placer placer{h, r.out, r.source, out};
+  for (const int32_t root : r.out.roots) {
+    out.roots.push_back(placer.add(root, -1));
+    out.bounds.extend(out.objects[size_t(out.roots.back())].box);
+  }
+  return out;
+}
+
 Hierarchy build_hierarchy(const SceneDescription& scene, HierarchyMode mode) {
   if (mode == HierarchyMode::AsRead) return build_hierarchy(scene);
-  // The first build (in regroup) has said what there is to say about the scene.
-  return build_hierarchy(regroup(scene, mode), {}, /*warn=*/false);
+  return regrouped_hierarchy(build_hierarchy(scene), mode);
 }
 
 Hierarchy load_hierarchy(const std::string& path, const ModelOptions& model,
                          std::optional<HierarchyMode> mode) {
-  return build_hierarchy(read_scene_file(path, model), mode.value_or(default_hierarchy_mode(path)));
+  const HierarchyMode m = mode.value_or(default_hierarchy_mode(path));
+  if (m == HierarchyMode::AsRead) return build_hierarchy(read_scene_file(path, model));
+  // The description is let go before regrouping: a million-triangle model's peak holds one
+  // copy of its triangles less.
+  const Hierarchy as_read = build_hierarchy(read_scene_file(path, model));
+  return regrouped_hierarchy(as_read, m);
 }
 
 }  // namespace rad

@@ -42,6 +42,10 @@ SceneDescription flat_hierarchy(const Hierarchy& h);
 /// The scene regrouped as `mode` says (AsRead: as it is).
 SceneDescription regroup(const SceneDescription& scene, HierarchyMode mode);
 
+/// build_hierarchy(regroup(scene, mode)) made without building twice: h regrouped as `mode`
+/// says, its triangles (with their normals and areas) reordered for the new tree.
+Hierarchy regrouped_hierarchy(const Hierarchy& h, HierarchyMode mode);
+
 /// build_hierarchy(regroup(scene, mode)).
 Hierarchy build_hierarchy(const SceneDescription& scene, HierarchyMode mode);
 

@@ -45,12 +45,15 @@ SceneDescription model_to_scene(Model m, const ModelOptions& o) {
     }
     materials.push_back(mat);
   }
-  std::string names;
-  for (const ModelMaterial& mm : m.materials) names += (names.empty() ? "" : ", ") + mm.name;
+  auto names = [&] {  // for the messages only
+    std::string all;
+    for (const ModelMaterial& mm : m.materials) all += (all.empty() ? "" : ", ") + mm.name;
+    return all;
+  };
   for (size_t r = 0; r < o.emit.size(); ++r) {
     if (rule_uses[r] == 0) {
       throw Error(SourceLoc{m.path},
-                  "--emit '" + o.emit[r].pattern + "' matches no material (" + names + ")");
+                  "--emit '" + o.emit[r].pattern + "' matches no material (" + names() + ")");
     }
   }
 
@@ -64,7 +67,14 @@ SceneDescription model_to_scene(Model m, const ModelOptions& o) {
   d.objects.push_back(root);
   d.roots.push_back(0);
   bool emits = false;
+  // Each group's Pure per material, reset after the group for the materials it used: a model
+  // of many groups and many materials (a converted building: 16k of each) costs their sum, not
+  // their product.
+  std::vector<int32_t> pure_of(m.materials.size(), -1);
+  std::vector<uint32_t> used;
   for (ModelGroup& g : m.groups) {
+    for (const uint32_t k : used) pure_of[k] = -1;
+    used.clear();
     const int32_t composite = int32_t(d.objects.size());
     ObjectDescription group;
     group.name = g.name;
@@ -72,11 +82,11 @@ SceneDescription model_to_scene(Model m, const ModelOptions& o) {
     group.loc = SourceLoc{m.path};
     d.objects.push_back(std::move(group));
     d.objects[0].children.push_back(composite);
-    std::vector<int32_t> pure_of(m.materials.size(), -1);
     for (size_t t = 0; t < g.triangles.size(); ++t) {
       const uint32_t k = g.material[t];
       if (pure_of[k] < 0) {
         pure_of[k] = int32_t(d.objects.size());
+        used.push_back(k);
         ObjectDescription p;
         p.name = g.name + ": " + m.materials[k].name;
         p.kind = ObjectKind::Pure;
@@ -103,7 +113,7 @@ SceneDescription model_to_scene(Model m, const ModelOptions& o) {
                 "nothing in this model emits light: name the lamps' materials with --emit, "
                 "e.g. --emit '" +
                     (m.materials.empty() ? std::string("*") : m.materials[0].name) +
-                    "=10' (materials: " + names + ")");
+                    "=10' (materials: " + names() + ")");
   }
   return d;
 }

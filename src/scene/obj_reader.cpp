@@ -32,42 +32,38 @@ std::string first_line(const std::string& s) {
 
 // The statements rad uses; tinyobjloader parses every other one too (skin weights, lines, points,
 // curves), and fuzzing found undefined behaviour there: a `vw` joint id beyond int. They carry
-// nothing a radiosity solve reads, so they are dropped before parsing.
-std::string statements_rad_reads(std::string_view obj) {
-  std::string out;
-  out.reserve(obj.size());
+// nothing a radiosity solve reads, so they are blanked out before parsing, in place (a copy of
+// the text was a tenth of an import), keeping every line where it was for the error messages.
+void blank_statements_rad_ignores(std::string& obj) {
   for (size_t at = 0; at < obj.size();) {
     // tinyobjloader ends a line at '\r' too (a lone one included): so must the filter, or a
     // statement after a '\r' would ride through on a kept line (fuzzing found a `vw` so).
-    size_t end = at;  // (find_first_of calls memchr per byte: a tenth of an import)
+    size_t end = at;  // (find_first_of calls memchr per byte)
     while (end < obj.size() && obj[end] != '\n' && obj[end] != '\r') ++end;
-    const std::string_view line = obj.substr(at, end - at);
-    size_t k = 0;
-    while (k < line.size() && (line[k] == ' ' || line[k] == '\t')) ++k;
+    size_t k = at;
+    while (k < end && (obj[k] == ' ' || obj[k] == '\t')) ++k;
     size_t w = k;
-    while (w < line.size() && !std::isspace(static_cast<unsigned char>(line[w]))) ++w;
-    const std::string_view word = line.substr(k, w - k);
-    for (const char* keep : {"v", "vt", "vn", "f", "o", "g", "usemtl", "mtllib", "s"}) {
-      if (word == keep) {
-        out.append(line);
-        break;
-      }
+    while (w < end && !std::isspace(static_cast<unsigned char>(obj[w]))) ++w;
+    const std::string_view word(obj.data() + k, w - k);
+    bool keep = false;
+    for (const char* kept : {"v", "f", "vt", "vn", "o", "g", "usemtl", "mtllib", "s"}) {
+      keep |= word == kept;
     }
-    out.push_back('\n');
-    at = end + (obj.substr(end, 2) == "\r\n" ? 2 : 1);  // one line end, as tinyobjloader counts
+    if (!keep) std::fill(obj.begin() + long(at), obj.begin() + long(end), ' ');
+    at = end + 1;
   }
-  return out;
 }
 
 }  // namespace
 
-Model parse_obj_text(std::string_view obj, std::string_view mtl, const std::string& path,
+Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& path,
                      const std::string& texture_folder) {
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromString(statements_rad_reads(obj), std::string(mtl), config)) {
+  blank_statements_rad_ignores(obj);
+  if (!reader.ParseFromString(obj, std::string(mtl), config)) {
     throw Error(SourceLoc{path}, "not a readable OBJ file: " + first_line(reader.Error()));
   }
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
@@ -148,7 +144,7 @@ Model parse_obj_text(std::string_view obj, std::string_view mtl, const std::stri
 }
 
 Model read_obj_file(const std::string& path, const SourceLoc& requested_at) {
-  const std::string obj = read_text_file(path, requested_at);
+  std::string obj = read_text_file(path, requested_at);
   const fs::path folder = fs::path(path).parent_path();
   // The MTL libraries: read here (regular files only, like every input) and handed over as text.
   std::string mtl;
@@ -171,7 +167,7 @@ Model read_obj_file(const std::string& path, const SourceLoc& requested_at) {
       }
     }
   }
-  return parse_obj_text(obj, mtl, path, folder.empty() ? "." : folder.string());
+  return parse_obj_text(std::move(obj), mtl, path, folder.empty() ? "." : folder.string());
 }
 
 }  // namespace rad

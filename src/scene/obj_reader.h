@@ -13,7 +13,7 @@ namespace rad {
 /// 0.8). Kd is the reflectance, Ke the emission; a map_Kd texture multiplies Kd by its mean
 /// colour when `texture_folder` is not empty and the image can be read (stb_image). Throws
 /// rad::Error at path:line for malformed input, non-finite coordinates and bad indices.
-Model parse_obj_text(std::string_view obj, std::string_view mtl, const std::string& path,
+Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& path,
                      const std::string& texture_folder = "");
 
 /// Reads an OBJ file and the MTL files its `mtllib` lines name (relative to it; a missing one

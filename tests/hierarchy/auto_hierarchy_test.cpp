@@ -90,6 +90,45 @@ TEST(AutoHierarchy, IsDeterministic) {
   }
 }
 
+TEST(AutoHierarchy, PlacedStraightFromTheHierarchyIsWhatASecondBuildMakes) {
+  // Regrouping reorders the first build's triangles instead of building the regrouped
+  // description again: the same tree, boxes, flags and triangles (normals and areas included).
+  SceneDescription d = generate_scene(SceneKind::FurnishedRoom, 8000, 2);
+  d.objects[3].flags.casts_shadows = false;  // a Pure's own flag survives regrouping
+  for (const SceneDescription& scene : {d, generate_scene(SceneKind::Building, 6400, 1)}) {
+    const Hierarchy h = build_hierarchy(scene);
+    for (const HierarchyMode mode : {HierarchyMode::Automatic, HierarchyMode::Flat}) {
+      const Hierarchy a = regrouped_hierarchy(h, mode);
+      const Hierarchy b = build_hierarchy(mode == HierarchyMode::Automatic ? automatic_hierarchy(h)
+                                                                           : flat_hierarchy(h));
+      ASSERT_EQ(a.objects.size(), b.objects.size());
+      EXPECT_EQ(a.roots, b.roots);
+      for (size_t i = 0; i < a.objects.size(); ++i) {
+        const SceneObject &x = a.objects[i], &y = b.objects[i];
+        EXPECT_EQ(x.name, y.name);
+        EXPECT_EQ(x.kind, y.kind);
+        EXPECT_EQ(x.parent, y.parent);
+        EXPECT_EQ(x.children, y.children);
+        EXPECT_EQ(x.first_triangle, y.first_triangle);
+        EXPECT_EQ(x.triangle_count, y.triangle_count);
+        EXPECT_EQ(x.box.lo, y.box.lo);
+        EXPECT_EQ(x.box.hi, y.box.hi);
+        EXPECT_EQ(x.material.reflectance, y.material.reflectance);
+        EXPECT_EQ(x.material.emission, y.material.emission);
+        EXPECT_EQ(x.casts_shadows, y.casts_shadows);
+        EXPECT_EQ(x.receives_shadows, y.receives_shadows);
+        EXPECT_EQ(x.influence, y.influence);
+      }
+      EXPECT_EQ(a.triangles.corners, b.triangles.corners);
+      EXPECT_EQ(a.triangles.normal, b.triangles.normal);
+      EXPECT_EQ(a.triangles.area, b.triangles.area);
+      EXPECT_EQ(a.triangles.object, b.triangles.object);
+      EXPECT_EQ(a.bounds.lo, b.bounds.lo);
+      EXPECT_EQ(a.bounds.hi, b.bounds.hi);
+    }
+  }
+}
+
 TEST(AutoHierarchy, RefusesToDropALightsListAndNamesTheOption) {
   const Hierarchy h = build_hierarchy(generate_scene(SceneKind::Building, 3200, 1, 1));
   try {
