@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstring>
 #include <numbers>
+#include <optional>
 #include <span>
 
 #include "core/denormals.h"
@@ -111,6 +112,54 @@ int receiver_side(const ShotSource& src, const Vec3& x) {
   return upper + src.offset_hi <= 0.0f ? -1 : 0;
 }
 
+namespace {
+
+// The exact unoccluded form factor of the source at x with normal n (the analytic method of
+// SPEC §4), or nothing where it does not apply and the samples' EQ 7 sums stand: it needs x in
+// front of every triangle of the source and, for a curved source cut by x's tangent plane, every
+// corner off its outline in front of that plane too (else the plane may cut a loop that meets no
+// outline edge, inside a dome, which the outline's clipping cannot see). Far away, with the source
+// wholly and clearly in front of the tangent plane (every point of it lies within one extent of
+// its centroid), the midpoint rule over the samples (`plain`: no grazing integrand for it to
+// miss); nearer, the outline's contour integral, in single precision close up and double beyond.
+std::optional<float> exact_form_factor(const Vec3& x, const Vec3& n, const ShotSource& src,
+                                       int side, float plain) {
+  if (side <= 0) return std::nullopt;
+  if (!src.planar &&
+      glm::dot(src.box.center() - x, n) - glm::dot(src.box.extent() * 0.5f, glm::abs(n)) <= 0.0f) {
+    for (const Vec3& q : src.interior) {
+      if (glm::dot(q - x, n) < 0.0f) return std::nullopt;
+    }
+  }
+  const Vec3 to_source = src.centroid - x;
+  const float d2 = glm::dot(to_source, to_source);
+  if (d2 > src.far_distance * src.far_distance && glm::dot(n, to_source) > src.extent) {
+    return std::clamp(plain, 0.0f, 1.0f);
+  }
+  const bool close = d2 < src.single_distance * src.single_distance;
+  return point_to_outline_form_factor(x, n, src.edge_a.data(), src.edge_b.data(), src.edge_a.size(),
+                                      src.axis, close ? Arithmetic::Single : Arithmetic::Double);
+}
+
+// One fan of shadow rays from x (moved off its surface) to the ends of the active samples:
+// scratch.blocked[j] for scratch.active[j].
+void trace_active(const Vec3& x, const Vec3& n, const ShotSource& src, size_t na,
+                  const VisibilityBackend& vis, const GatherSettings& st, GatherScratch& scratch) {
+  scratch.end_x.resize(na), scratch.end_y.resize(na), scratch.end_z.resize(na);
+  scratch.blocked.resize(na);
+  for (size_t j = 0; j < na; ++j) {
+    const uint32_t i = scratch.active[j];
+    scratch.end_x[j] = src.end_x[i];
+    scratch.end_y[j] = src.end_y[i];
+    scratch.end_z[j] = src.end_z[i];
+  }
+  const SegmentFan fan{off_surface(x, n, st.shadow_offset), scratch.end_x.data(),
+                       scratch.end_y.data(), scratch.end_z.data(), na};
+  vis.occluded_fan(fan, std::span<uint8_t>(scratch.blocked.data(), na), scratch.stats.rays);
+}
+
+}  // namespace
+
 Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid,
                         const ShotSource& src, const VisibilityBackend& vis,
                         const GatherSettings& st, GatherScratch& scratch) {
@@ -138,77 +187,38 @@ Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroi
     na += k[i] > 0.0f ? 1 : 0;
   }
 
-  // The exact form factor needs x in front of every triangle of the source; for a curved source
-  // cut by x's tangent plane, also every corner off its outline in front of that plane, else the
-  // plane may cut a loop that meets no outline edge (inside a dome), which the outline's
-  // clipping cannot see. Otherwise the samples' EQ 7 sum.
-  bool analytic = st.method == FormFactorMethod::Analytic && side > 0;
-  if (analytic && !src.planar &&
-      glm::dot(src.box.center() - x, n) - glm::dot(src.box.extent() * 0.5f, glm::abs(n)) <= 0.0f) {
-    for (const Vec3& q : src.interior) analytic &= glm::dot(q - x, n) >= 0.0f;
-  }
-  float ff = 0.0f;
-  if (analytic) {
-    const Vec3 to_source = src.centroid - x;
-    const float d2 = glm::dot(to_source, to_source);
-    // Far, and the source wholly and clearly in front of the tangent plane (every point of it
-    // lies within one extent of its centroid): no grazing integrand for the rule to miss.
-    const bool far =
-        d2 > src.far_distance * src.far_distance && glm::dot(n, to_source) > src.extent;
-    if (far) {
-      ff = std::clamp(sums.plain(), 0.0f, 1.0f);
-    } else {
-      const bool close = d2 < src.single_distance * src.single_distance;
-      ff = point_to_outline_form_factor(x, n, src.edge_a.data(), src.edge_b.data(),
-                                        src.edge_a.size(), src.axis,
-                                        close ? Arithmetic::Single : Arithmetic::Double);
-    }
-  }
-  if (analytic ? ff <= 0.0f : na == 0) {
+  // The form factor: exact where it applies, else EQ 7 as it stands (the areas are in the
+  // weights). Gain = scale * sum(k * dB * visibility).
+  const std::optional<float> ff = st.method == FormFactorMethod::Analytic
+                                      ? exact_form_factor(x, n, src, side, sums.plain())
+                                      : std::nullopt;
+  if (ff ? *ff <= 0.0f : na == 0) {
     ++scratch.stats.culled;
     return Vec3(0.0f);
   }
   ++scratch.stats.vertex_evaluations;
+  const float scale = ff ? (weight_sum > 0.0f ? *ff / weight_sum : 0.0f) : 1.0f;
 
-  // Gain = scale * sum(k * dB * visibility): the exact form factor over the weights' sum, or
-  // EQ 7 as it stands (the areas are in the weights).
-  const float scale = analytic ? (weight_sum > 0.0f ? ff / weight_sum : 0.0f) : 1.0f;
-  const bool near = analytic && !src.fine_sample.empty() &&
-                    glm::dot(x - src.centroid, src.axis) < src.near_distance;
-
-  // Visibility of the coarse samples: traced, or all visible without shadows or below the cut.
+  // Visibility of the active samples: traced, or all visible without shadows or below the cut.
   const bool cut = max_component(glm::abs(unoccluded * scale)) < st.cut;  // |.|: negative edits
   if (st.shadows && cut) scratch.stats.intensity_cuts += na;
   const bool traced = st.shadows && !cut && na > 0;
-  if (traced) {
-    // One fan from the receiver to the active samples' shadow-ray ends.
-    scratch.end_x.resize(na), scratch.end_y.resize(na), scratch.end_z.resize(na);
-    scratch.blocked.resize(na);
-    for (size_t j = 0; j < na; ++j) {
-      const uint32_t i = scratch.active[j];
-      scratch.end_x[j] = src.end_x[i];
-      scratch.end_y[j] = src.end_y[i];
-      scratch.end_z[j] = src.end_z[i];
-    }
-    const SegmentFan fan{off_surface(x, n, st.shadow_offset), scratch.end_x.data(),
-                         scratch.end_y.data(), scratch.end_z.data(), na};
-    vis.occluded_fan(fan, std::span<uint8_t>(scratch.blocked.data(), na), scratch.stats.rays);
-  }
+  if (traced) trace_active(x, n, src, na, vis, st, scratch);
 
-  Vec3 mean;
-  if (near) {
+  // Near field (exact form factor only): the unshot radiosity weighted over the fine samples,
+  // each taking its stratum's visibility.
+  if (ff && !src.fine_sample.empty() && glm::dot(x - src.centroid, src.axis) < src.near_distance) {
     scratch.coarse_visible.assign(ns, 1.0f);
     if (traced) {
       for (size_t j = 0; j < na; ++j)
         scratch.coarse_visible[scratch.active[j]] = scratch.blocked[j] ? 0.0f : 1.0f;
     }
-    if (near_field_mean(x, n, src, scratch.coarse_visible.data(), &mean)) return mean * ff;
+    Vec3 mean;
+    if (near_field_mean(x, n, src, scratch.coarse_visible.data(), &mean)) return mean * *ff;
   }
-  if (analytic && weight_sum <= 0.0f) {
-    // The visible part of the source holds no sample (a sliver above the tangent plane): take it
-    // unoccluded with the source's mean unshot radiosity.
-    return src.mean_unshot * ff;
-  }
+  // The visible part of the source holds no sample (a sliver above the tangent plane): it is
+  // taken unoccluded with the source's mean unshot radiosity.
+  if (ff && weight_sum <= 0.0f) return src.mean_unshot * *ff;
   if (!traced) return unoccluded * scale;
   // The visible samples summed afresh (not the blocked ones subtracted): a vertex in full
   // umbra gets exactly zero.
