@@ -24,11 +24,6 @@ struct Aabb {
   Vec3 extent() const { return empty() ? Vec3(0.0f) : hi - lo; }
   Vec3 center() const { return (lo + hi) * 0.5f; }
   float diagonal() const { return glm::length(extent()); }
-  /// Squared distance between the nearest points of two boxes (0 where they overlap).
-  float distance_squared(const Aabb& b) const {
-    const Vec3 gap = glm::max(Vec3(0.0f), glm::max(b.lo - hi, lo - b.hi));
-    return glm::dot(gap, gap);
-  }
   /// The larger of the diagonal and the largest coordinate magnitude: float rounding of the
   /// positions inside the box scales with it (about 1.2e-7 of it), not with the diagonal alone.
   float magnitude() const {

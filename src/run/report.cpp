@@ -27,7 +27,6 @@ std::string format_statistics(const SolverState& s, double elapsed) {
   o += fmt::format("Number of hits on bounding boxes: {} ({:.2f}%)\n", r.box_hits,
                    percent(r.box_hits, r.box_trials));
   o += fmt::format("Number of intensity cuts:    {}\n", s.stats.intensity_cuts);
-  o += fmt::format("Receiving clusters cut whole: {}\n", s.stats.clusters_cut);
   o += fmt::format("Shots: {}, subdivisions: {}, vertices: {}, elements: {}\n", s.shots,
                    s.stats.subdivisions, count_vertices(s.mesh), count_leaves(s.mesh));
   o += fmt::format("Unshot energy left: {:.3g} of emitted\n", s.unshot_fraction());
@@ -95,7 +94,6 @@ void write_stats_json(const std::string& path, const RunOptions& run, const Scen
         {"interpolated_midpoints", s.stats.interpolated_midpoints},
         {"vertex_evaluations", s.stats.vertex_evaluations},
         {"culled", s.stats.culled},
-        {"clusters_cut", s.stats.clusters_cut},
         {"vertices", count_vertices(s.mesh)},
         {"elements", count_leaves(s.mesh)},
         {"emitted_energy", s.emitted_energy},

@@ -3,7 +3,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <numbers>
 
 namespace rad {
 
@@ -43,35 +42,6 @@ bool may_receive(const SolverState& s, size_t p, const ShotSource& src) {
   return glm::dot(src.box.center() - c[0], n) + glm::dot(half, glm::abs(n)) > 0.0f;
 }
 
-namespace {
-
-// The largest |unshot radiosity| of any sample of the source, coarse or fine: every regime of
-// gather_from_source returns a form factor times a weighted mean of these.
-float peak_unshot(const ShotSource& src) {
-  float peak = max_component(glm::abs(src.mean_unshot));
-  for (const SampleLanes* lanes : {&src.sample, &src.fine_sample}) {
-    for (size_t i = 0; i < lanes->size(); ++i)
-      peak = std::max(peak, max_component(glm::abs(lanes->value(i))));
-  }
-  return peak;
-}
-
-}  // namespace
-
-std::vector<uint8_t> clusters_below_cut(const SolverState& s, const ShotSource& src, float cut) {
-  const Clusters& k = s.clusters;
-  std::vector<uint8_t> below(k.size(), 0);
-  if (!(cut > 0.0f)) return below;
-  // No point of a surface sees a source of area A at distance >= d with a form factor above
-  // A / (pi d^2) (cosines at most 1); the source's gain there is at most that times its peak.
-  const double reach = double(peak_unshot(src)) * double(src.area) / std::numbers::pi;
-  tbb::parallel_for(size_t(0), k.size(), [&](size_t c) {
-    const double d2 = double(src.box.distance_squared(k.box[c]));
-    below[c] = d2 > 0.0 && reach < double(cut) * d2;
-  });
-  return below;
-}
-
 void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,
                         bool major) {
   const Triangles& tris = s.hierarchy->triangles;
@@ -88,17 +58,11 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
   }
   receivers.clear();
   // With a Lights list only the triangles it names are looked at; under MPI, only this rank's.
-  // The intensity cut applied to whole receiving clusters (SPEC §10; Smits, Arvo, Greenberg
-  // 1994): a cluster that cannot gain above the cut anywhere is skipped at once, so a weak shot
-  // in a building costs the rooms around it, not the building.
   const int32_t influence = shooter_influence(s, src);
-  const std::vector<uint8_t> below = clusters_below_cut(s, src, settings.cut);
-  for (const uint8_t b : below) s.stats.clusters_cut += b;
   const std::vector<TriangleRange> all{{0, uint32_t(tris.size())}};
   for (const TriangleRange& r : influence < 0 ? all : s.hierarchy->objects[size_t(influence)].lit) {
-    tbb::parallel_for(size_t(r.first), size_t(r.first) + r.count, [&](size_t p) {
-      received[p] = s.owns(p) && !below[s.clusters.cluster_of[p]] && may_receive(s, p, src);
-    });
+    tbb::parallel_for(size_t(r.first), size_t(r.first) + r.count,
+                      [&](size_t p) { received[p] = s.owns(p) && may_receive(s, p, src); });
     for (size_t p = r.first; p < size_t(r.first) + r.count; ++p)
       if (received[p]) receivers.push_back(uint32_t(p));
   }

@@ -23,14 +23,8 @@ int32_t shooter_influence(const SolverState& s, const ShotSource& src);
 /// plane.
 bool may_receive(const SolverState& s, size_t p, const ShotSource& src);
 
-/// Per cluster of s: 1 where no point of it can gain `cut` or more from `src` (the intensity cut
-/// applied to a whole cluster: the source's peak unshot radiosity times its area over pi d^2, d
-/// the gap between the two boxes). All 0 when cut <= 0.
-std::vector<uint8_t> clusters_below_cut(const SolverState& s, const ShotSource& src, float cut);
-
 /// Shoots `src` (whose unshot radiosity the caller has already cleared) to every vertex of every
-/// other polygon not in a cluster below the cut (those are skipped and counted in
-/// s.stats.clusters_cut), in parallel over polygons and their vertices (TBB). Each vertex gets
+/// other polygon, in parallel over polygons and their vertices (TBB). Each vertex gets
 /// H += dH, unshot += rho * dH and shot = dH. The polygons that may have gained are listed in
 /// s.receivers, in index order, and marked in s.received (the others' `shot` values are stale).
 /// Statistics are summed into s.stats. With `major`, dH is also added to each vertex's `major`

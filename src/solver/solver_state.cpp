@@ -21,7 +21,6 @@ namespace rad {
 SolverStats& SolverStats::operator+=(const SolverStats& o) {
   rays += o.rays;
   intensity_cuts += o.intensity_cuts;
-  clusters_cut += o.clusters_cut;
   culled += o.culled;
   vertex_evaluations += o.vertex_evaluations;
   subdivisions += o.subdivisions;

@@ -23,7 +23,6 @@ namespace rad {
 struct SolverStats {
   VisibilityStats rays;
   uint64_t intensity_cuts = 0;      // shadow rays skipped by the intensity cut
-  uint64_t clusters_cut = 0;        // receiving clusters skipped whole by the intensity cut
   uint64_t culled = 0;              // vertex evaluations skipped: source behind or facing away
   uint64_t vertex_evaluations = 0;  // vertex-to-source gathers computed
   uint64_t subdivisions = 0;        // elements split into four

@@ -76,56 +76,6 @@ TEST(Gather, IntensityCutSkipsRaysAndCountsThem) {
   EXPECT_FLOAT_EQ(cut.x, traced.x) << "nothing blocks here, so the unoccluded gain is exact";
 }
 
-// The intensity cut one level up (SPEC §10): a small emitter and tiles facing it, one behind the
-// other along its axis, where the bound (area over pi d^2) is nearly what they gain. The clusters
-// it marks below the cut are ones where every vertex gains less than the cut, never one that
-// gains more, and a shot skips them whole.
-TEST(Gather, ClustersBelowTheCutAreSkippedWholeAndNoneGainsMoreThanIt) {
-  SceneDescription d;
-  testing::add_quad(d, "lamp", {0, 1, 0.4f}, {0, 1.2f, 0.4f}, {0, 1.2f, 0.6f}, {0, 1, 0.6f},
-                    Vec3(0), Vec3(1));  // facing +x
-  for (int i = 0; i < 40; ++i) {        // facing -x, 0.25 m apart
-    const float x = 0.5f + 0.25f * float(i);
-    testing::add_quad(d, "tile" + std::to_string(i), {x, 1, 0.4f}, {x, 1, 0.6f}, {x, 1.2f, 0.6f},
-                      {x, 1.2f, 0.4f}, Vec3(0.5f), Vec3(0));
-  }
-  const Hierarchy h = build_hierarchy(d);
-  const auto vis = make_visibility_backend(BackendKind::Embree, h);
-  SolverState s = make_solver_state(h, {});
-  const int32_t lamp = int32_t(s.clusters.cluster_of[0]);
-  const ShotSource src = make_shot_source(s, lamp);
-  GatherSettings g = gather_settings(s);
-  g.shadows = false;
-  g.cut = 1e-3f;
-  const std::vector<uint8_t> below = clusters_below_cut(s, src, g.cut);
-  size_t cut = 0;
-  for (size_t c = 0; c < s.clusters.size(); ++c) {
-    if (int32_t(c) == lamp) continue;
-    float most = 0.0f;  // the largest gain of any vertex of the cluster
-    for (uint32_t j = s.clusters.first[c]; j < s.clusters.first[c + 1]; ++j) {
-      const uint32_t p = s.clusters.polygons[j];
-      for (const MeshVertex& v : s.mesh.polygons[p].vertices) {
-        GatherScratch sc;
-        const Vec3 dh = gather_from_source(v.position, h.triangles.normal[p],
-                                           h.triangles.centroid(p), src, *vis, g, sc);
-        most = std::max(most, max_component(dh));
-      }
-    }
-    if (below[c]) {
-      ++cut;
-      EXPECT_LT(most, g.cut) << "cluster " << c;
-    }
-  }
-  // The bound is not loose: the near tiles are kept, the far ones cut.
-  EXPECT_GT(cut, 10u);
-  EXPECT_LT(cut, 38u);
-  // A shot at that cut skips them whole: none of their polygons receives.
-  s.options.intensity_cut = g.cut / s.radiosity_scale;
-  shoot_to_receivers(s, src, *vis, false);
-  EXPECT_EQ(s.stats.clusters_cut, cut);
-  for (const uint32_t p : s.receivers) EXPECT_FALSE(below[s.clusters.cluster_of[p]]) << p;
-}
-
 // The form factor of the gather (unit unshot radiosity, no shadows, no inset) against the
 // double-precision contour integral over the quad's two triangles, from a third of its extent to
 // 10^4 extents away, at random directions and receiver orientations. Each path it takes (the
