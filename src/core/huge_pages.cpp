@@ -1,7 +1,8 @@
 // The program's operator new, replaced (a replaceable allocation function, [new.delete]) so that
 // big blocks ask for transparent huge pages where the kernel leaves them to madvise (Debian's
 // default): a block of a million triangles is then faulted in 2 MiB at a time, not 4 KiB, and
-// the page faults that were a quarter of a model's import mostly go. Everything else is malloc.
+// much of the page faulting that was a quarter of a model's import goes. Everything else is
+// malloc. (No new_handler is called on failure: rad sets none.)
 // Linked into the rad executable only; not under the sanitizers, which bring their own.
 #if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
 
@@ -14,7 +15,9 @@
 namespace {
 
 constexpr std::size_t kHugePage = std::size_t(2) << 20;
-constexpr std::size_t kBigBlock = std::size_t(8) << 20;  // below this, the sparse tail costs more
+// At 32 MiB and more glibc always maps a block of its own (its mmap threshold never rises
+// above that), so the advice never lands on heap memory that small blocks will reuse.
+constexpr std::size_t kBigBlock = std::size_t(32) << 20;
 
 void* allocate(std::size_t n) {
   void* p = std::malloc(n > 0 ? n : 1);
