@@ -120,10 +120,11 @@ namespace {
 // corner off its outline in front of that plane too (else the plane may cut a loop that meets no
 // outline edge, inside a dome, which the outline's clipping cannot see). Far away, with the source
 // wholly and clearly in front of the tangent plane (every point of it lies within one extent of
-// its centroid), the midpoint rule over the samples (`plain`: no grazing integrand for it to
-// miss); nearer, the outline's contour integral, in single precision close up and double beyond.
+// its centroid), the midpoint rule over the samples (sums.plain(): no grazing integrand for it
+// to miss); nearer, the outline's contour integral, in single precision
+// close up and double beyond.
 std::optional<float> exact_form_factor(const Vec3& x, const Vec3& n, const ShotSource& src,
-                                       int side, float plain) {
+                                       int side, const KernelSums& sums) {
   if (side <= 0) return std::nullopt;
   if (!src.planar &&
       glm::dot(src.box.center() - x, n) - glm::dot(src.box.extent() * 0.5f, glm::abs(n)) <= 0.0f) {
@@ -134,7 +135,7 @@ std::optional<float> exact_form_factor(const Vec3& x, const Vec3& n, const ShotS
   const Vec3 to_source = src.centroid - x;
   const float d2 = glm::dot(to_source, to_source);
   if (d2 > src.far_distance * src.far_distance && glm::dot(n, to_source) > src.extent) {
-    return std::clamp(plain, 0.0f, 1.0f);
+    return std::clamp(sums.plain(), 0.0f, 1.0f);
   }
   const bool close = d2 < src.single_distance * src.single_distance;
   return point_to_outline_form_factor(x, n, src.edge_a.data(), src.edge_b.data(), src.edge_a.size(),
@@ -190,7 +191,7 @@ Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroi
   // The form factor: exact where it applies, else EQ 7 as it stands (the areas are in the
   // weights). Gain = scale * sum(k * dB * visibility).
   const std::optional<float> ff = st.method == FormFactorMethod::Analytic
-                                      ? exact_form_factor(x, n, src, side, sums.plain())
+                                      ? exact_form_factor(x, n, src, side, sums)
                                       : std::nullopt;
   if (ff ? *ff <= 0.0f : na == 0) {
     ++scratch.stats.culled;

@@ -52,7 +52,7 @@ bool kernel_offers_huge_pages() {
   return s.find("[always]") != std::string::npos || s.find("[madvise]") != std::string::npos;
 }
 
-TEST(HugePages, ABigBlockIsBackedByHugePagesWhereTheKernelOffersThem) {
+TEST(HugePages, ABigBlockIsAdvisedForHugePagesWhereTheKernelOffersThem) {
   if (!kReplaced) GTEST_SKIP() << "the sanitizers' operator new";
   if (!kernel_offers_huge_pages()) GTEST_SKIP() << "transparent huge pages are off";
   std::vector<char> block(size_t(64) << 20, 1);  // every page written (64 MiB: advised)
