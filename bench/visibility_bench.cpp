@@ -4,7 +4,7 @@
 //
 //   visibility_bench [--benchmark_filter=...] [--benchmark_format=json]
 //   RAD_BENCH_TRIANGLES=1000000  scene size (default 100000)
-//   RAD_BENCH_GRID_SWEEP=1       also time the grid at 0.5 … 8 cells per triangle
+//   RAD_BENCH_GRID_SWEEP=1       also time the grid at 1 … 32 cells per triangle
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
@@ -98,8 +98,9 @@ void run(benchmark::State& state, const BenchScene& s, const VisibilityBackend& 
 }
 
 void register_all(uint64_t triangles, bool grid_sweep) {
-  const SceneKind kinds[] = {SceneKind::CornellBox, SceneKind::Soup, SceneKind::Nested,
-                             SceneKind::TeapotInStadium, SceneKind::Building};
+  const SceneKind kinds[] = {SceneKind::CornellBox, SceneKind::Soup,
+                             SceneKind::Nested,     SceneKind::TeapotInStadium,
+                             SceneKind::Building,   SceneKind::FurnishedRoom};
   for (SceneKind kind : kinds) {
     std::string scene_name = std::string(to_string(kind)) + "_" + std::to_string(triangles);
     struct Config {
@@ -112,8 +113,8 @@ void register_all(uint64_t triangles, bool grid_sweep) {
                                    {"embree/packet", BackendKind::Embree, true, 0},
                                    {"grid", BackendKind::Grid, false, kDefaultCellsPerTriangle}};
     if (grid_sweep) {
-      for (double d : {0.5, 1.0, 2.0, 4.0, 8.0}) {
-        configs.push_back({"grid@" + std::to_string(d).substr(0, 3), BackendKind::Grid, false, d});
+      for (double d : {1.0, 2.0, 4.0, 8.0, 16.0, 32.0}) {
+        configs.push_back({"grid@" + std::to_string(int(d)), BackendKind::Grid, false, d});
       }
     }
     for (const Config& c : configs) {

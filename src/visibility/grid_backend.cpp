@@ -2,6 +2,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <bit>
 #include <cassert>
 #include <vector>
 
@@ -38,8 +40,8 @@ class GridBackend final : public VisibilityBackend {
     grids_.resize(grid_objects.size());
     tbb::parallel_for(size_t(0), grid_objects.size(), [&](size_t g) {
       const SceneObject& o = h.objects[grid_objects[g]];
-      grids_[g] = UniformGrid::build(h.triangles, o.first_triangle, o.triangle_count, padded(o.box),
-                                     cells_per_triangle);
+      grids_[g] = UniformGrid::build(h.triangles, records_, o.first_triangle, o.triangle_count,
+                                     padded(o.box), cells_per_triangle);
     });
   }
 
@@ -135,7 +137,22 @@ class GridBackend final : public VisibilityBackend {
       uint32_t hit = kNoTriangle;
       walk_grid(grid.shape(), o, d, inv, t0, t1, [&](const GridCell& cell) {
         ++c.cells;
-        for (uint32_t t : grid.cell(cell.index)) {
+        const std::span<const uint32_t> ids = grid.cell(cell.index);
+        const uint32_t first_packet = grid.first_packet(cell.index);
+        if (first_packet != UniformGrid::kNoPackets) {
+          // A dense cell: eight triangles per test, no mailbox (a repeated lane costs nothing).
+          for (uint32_t at = 0; at < ids.size(); at += TrianglePacket::kLanes) {
+            const uint32_t lanes =
+                segment_hits_packet(grid.packet(first_packet + at / TrianglePacket::kLanes), o, d);
+            c.tests += std::min<size_t>(TrianglePacket::kLanes, ids.size() - at);
+            if (lanes != 0) {
+              hit = ids[at + uint32_t(std::countr_zero(lanes))];
+              return true;
+            }
+          }
+          return false;
+        }
+        for (uint32_t t : ids) {
           uint32_t& slot = mailbox[t & (kMailboxSize - 1)];
           if (slot == t) continue;
           slot = t;

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "core/math.h"
@@ -58,6 +59,63 @@ inline std::vector<TriangleRecord> make_triangle_records(const Hierarchy& h) {
   return out;
 }
 
+/// Eight triangle records side by side (structure of arrays, the fields named as in
+/// TriangleRecord), lane i of every field from one record; unused lanes hold the all-zero record,
+/// which nothing hits.
+struct alignas(32) TrianglePacket {
+  static constexpr uint32_t kLanes = 8;
+  using Lanes = float __attribute__((vector_size(kLanes * sizeof(float))));
+  struct LanesVec3 {
+    Lanes x{}, y{}, z{};
+  };
+  LanesVec3 normal;
+  Lanes plane_offset{};
+  LanesVec3 s_a, s_b, c;
+
+  void set(uint32_t lane, const TriangleRecord& r) {
+    for (int a = 0; a < 3; ++a) {
+      (&normal.x)[a][lane] = r.normal[a];
+      (&s_a.x)[a][lane] = r.s_a[a];
+      (&s_b.x)[a][lane] = r.s_b[a];
+      (&c.x)[a][lane] = r.c[a];
+    }
+    plane_offset[lane] = r.plane_offset;
+  }
+};
+
+/// The SPEC §6 test of one segment against R = TriangleRecord (returns bool) or TrianglePacket
+/// (returns the mask of lanes hit). One expression for both, evaluated in the same order, so a
+/// lane of the packet test answers exactly what the one-triangle test does: the visibility
+/// library is compiled without floating-point contraction (-ffp-contract=off), which would
+/// otherwise fuse products into FMAs differently in the two forms. One triangle returns as soon
+/// as the segment misses its plane (most triangles of a cell lie off the segment's span); the
+/// packet makes every comparison and ands the results, so its only branch is the caller's on the
+/// mask. A segment parallel to the plane needs no test of its own: n·direction = 0 makes
+/// t = ±inf or NaN, which fails 0 < t < 1.
+template <class R>
+[[gnu::always_inline]] inline auto barycentric_hit(const R& r, const Vec3& o, const Vec3& d) {
+  const auto denom = r.normal.x * d.x + r.normal.y * d.y + r.normal.z * d.z;
+  const auto num = r.plane_offset - (r.normal.x * o.x + r.normal.y * o.y + r.normal.z * o.z);
+  const auto t = num / denom;
+  const auto qx = o.x + t * d.x - r.c.x, qy = o.y + t * d.y - r.c.y, qz = o.z + t * d.z - r.c.z;
+  if constexpr (!std::is_same_v<R, TrianglePacket>) {
+    if (!(t > 0.0f && t < 1.0f)) return false;
+  }
+  const auto alpha = qx * r.s_a.x + qy * r.s_a.y + qz * r.s_a.z;
+  const auto beta = qx * r.s_b.x + qy * r.s_b.y + qz * r.s_b.z;
+  const auto hit =
+      (t > 0.0f) & (t < 1.0f) & (alpha >= 0.0f) & (beta >= 0.0f) & (alpha + beta <= 1.0f);
+  if constexpr (std::is_same_v<R, TrianglePacket>) {
+    uint32_t mask = 0;
+    for (uint32_t lane = 0; lane < TrianglePacket::kLanes; ++lane) {
+      mask |= uint32_t(hit[lane] != 0) << lane;
+    }
+    return mask;
+  } else {
+    return hit != 0;
+  }
+}
+
 /// Ray–triangle intersection by barycentric coordinates (SPEC §6; the plane/barycentric form of
 /// Snyder & Barr, "Ray Tracing Complex Models Containing Surface Tessellations", SIGGRAPH 1987):
 /// true if origin + t·direction meets the triangle for some t in the open interval (0, 1), with
@@ -65,15 +123,13 @@ inline std::vector<TriangleRecord> make_triangle_records(const Hierarchy& h) {
 /// (n·direction = 0, including lying in it) never hits. Pure function, float arithmetic.
 inline bool segment_hits_triangle(const TriangleRecord& r, const Vec3& origin,
                                   const Vec3& direction) {
-  float denom = glm::dot(r.normal, direction);
-  float num = r.plane_offset - glm::dot(r.normal, origin);
-  if (!(denom != 0.0f)) return false;
-  float t = num / denom;
-  if (!(t > 0.0f && t < 1.0f)) return false;
-  Vec3 q = origin + t * direction - r.c;
-  float alpha = glm::dot(q, r.s_a);
-  float beta = glm::dot(q, r.s_b);
-  return alpha >= 0.0f && beta >= 0.0f && alpha + beta <= 1.0f;
+  return barycentric_hit(r, origin, direction);
+}
+
+/// segment_hits_triangle on a packet's eight lanes at once: bit i set when lane i is hit.
+inline uint32_t segment_hits_packet(const TrianglePacket& p, const Vec3& origin,
+                                    const Vec3& direction) {
+  return barycentric_hit(p, origin, direction);
 }
 
 }  // namespace rad

@@ -60,8 +60,9 @@ std::array<int32_t, 3> grid_resolution(const Vec3& extent, uint32_t triangle_cou
   return res;
 }
 
-UniformGrid UniformGrid::build(const Triangles& triangles, uint32_t first, uint32_t count,
-                               const Aabb& box, double cells_per_triangle) {
+UniformGrid UniformGrid::build(const Triangles& triangles, std::span<const TriangleRecord> records,
+                               uint32_t first, uint32_t count, const Aabb& box,
+                               double cells_per_triangle) {
   UniformGrid grid;
   grid.shape_ =
       make_grid_shape(box.lo, box.hi, grid_resolution(box.extent(), count, cells_per_triangle));
@@ -94,6 +95,16 @@ UniformGrid UniformGrid::build(const Triangles& triangles, uint32_t first, uint3
   for (uint32_t c = 0; c < cells; ++c) {
     std::sort(grid.indices_.begin() + grid.offsets_[c],
               grid.indices_.begin() + grid.offsets_[c + 1]);
+  }
+  grid.first_packet_.assign(cells, kNoPackets);
+  for (uint32_t c = 0; c < cells; ++c) {
+    const std::span<const uint32_t> ids = grid.cell(c);
+    if (ids.size() < kPacketMinimum) continue;
+    grid.first_packet_[c] = uint32_t(grid.packets_.size());
+    for (size_t i = 0; i < ids.size(); ++i) {
+      if (i % TrianglePacket::kLanes == 0) grid.packets_.emplace_back();
+      grid.packets_.back().set(uint32_t(i % TrianglePacket::kLanes), records[ids[i]]);
+    }
   }
   return grid;
 }
