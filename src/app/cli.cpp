@@ -70,6 +70,7 @@ struct SceneReading {
 struct Solving {
   std::string backend = "embree", method = "analytic";
   int samples = 16, max_samples = 64;
+  size_t kept_rays_mib = SolverOptions{}.kept_rays_bytes >> 20;
 
   void add_to(CLI::App& app, RunOptions& r, bool time_limit) {
     app.add_option("--backend", backend, "Shadow-ray backend: embree, grid or brute")
@@ -111,6 +112,10 @@ struct Solving {
     app.add_option("--max-shots", o.max_shots,
                    "Stop after this many shots (0 writes the unlit scene: emission only)");
     if (time_limit) app.add_option("--time-limit", o.time_limit, "Stop after this many seconds");
+    app.add_option("--kept-rays", kept_rays_mib,
+                   "MiB for shadow-ray answers kept between shots of the same cluster, which "
+                   "casts the same rays again (0: trace every ray every time; same result)")
+        ->capture_default_str();
     app.add_flag("--overshoot", o.overshoot,
                  "Overshooting (Feda & Purgathofer 1992): shooters also shoot their share of the "
                  "ambient term");
@@ -132,6 +137,7 @@ struct Solving {
       }
       return m;
     };
+    r.solver.kept_rays_bytes = kept_rays_mib << 20;
     r.solver.sample_grid = grid(samples, "--samples");
     r.solver.max_sample_grid = std::max(grid(max_samples, "--max-samples"), r.solver.sample_grid);
   }

@@ -27,6 +27,9 @@ std::string format_statistics(const SolverState& s, double elapsed) {
   o += fmt::format("Number of hits on bounding boxes: {} ({:.2f}%)\n", r.box_hits,
                    percent(r.box_hits, r.box_trials));
   o += fmt::format("Number of intensity cuts:    {}\n", s.stats.intensity_cuts);
+  o += fmt::format("Shadow-ray answers kept:     {} ({:.2f}% of those needed)\n",
+                   s.stats.kept_answers,
+                   percent(s.stats.kept_answers, s.stats.kept_answers + r.rays));
   o += fmt::format("Shots: {}, subdivisions: {}, vertices: {}, elements: {}\n", s.shots,
                    s.stats.subdivisions, count_vertices(s.mesh), count_leaves(s.mesh));
   o += fmt::format("Unshot energy left: {:.3g} of emitted\n", s.unshot_fraction());
@@ -86,7 +89,8 @@ void write_stats_json(const std::string& path, const RunOptions& run, const Scen
         {"box_hits", r.box_hits},
         {"cells_visited", r.cells_visited},
         {"triangle_tests", r.triangle_tests},
-        {"intensity_cuts", s.stats.intensity_cuts}}},
+        {"intensity_cuts", s.stats.intensity_cuts},
+        {"kept_answers", s.stats.kept_answers}}},
       {"solver",
        {{"shots", s.shots},
         {"subdivisions", s.stats.subdivisions},

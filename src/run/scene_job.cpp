@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -124,11 +125,15 @@ SceneJobResult run_scene_job(const RunOptions& run, const SceneJob& job, Ranks* 
                             state.min_size, format_bytes(double(memory_limit)),
                             job.max_memory > 0 ? " (--max-memory)" : " (90% of this machine's)"));
   }
-  say(
-      fmt::format("Memory: {} now, at most {} more by subdivision and {} per shot logged "
-                  "(limit {})",
-                  format_bytes(now), format_bytes(growth), format_bytes(per_shot),
-                  format_bytes(double(memory_limit))));
+  // Kept shadow-ray answers (solver/kept_rays.h) take at most an eighth of the limit.
+  if (memory_limit > 0) {
+    state.options.kept_rays_bytes = std::min(state.options.kept_rays_bytes, memory_limit / 8);
+  }
+  say(fmt::format(
+      "Memory: {} now, at most {} more by subdivision, {} per shot logged and {} of "
+      "kept shadow-ray answers (limit {})",
+      format_bytes(now), format_bytes(growth), format_bytes(per_shot),
+      format_bytes(double(state.options.kept_rays_bytes)), format_bytes(double(memory_limit))));
 
   say(fmt::format("Starting Computation ({} triangles, {} backend, {} thread{}{})",
                   hierarchy.triangles.size(), to_string(run.backend), threads,

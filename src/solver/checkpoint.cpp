@@ -20,7 +20,7 @@ namespace {
 // Layout: magic, format, fingerprint, payload size, payload checksum, payload. Native byte
 // order and float layout: a checkpoint resumes on the machine kind that wrote it.
 constexpr char kMagic[8] = {'R', 'A', 'D', 'C', 'K', 'P', 'T', '\n'};
-constexpr uint32_t kFormat = 2;  // 2: vertices shared by copy
+constexpr uint32_t kFormat = 3;  // 2: vertices shared by copy; 3: kept shadow-ray answers counted
 constexpr size_t kHeader = sizeof kMagic + sizeof(uint32_t) + 3 * sizeof(uint64_t);
 
 struct HistoryRecord {

@@ -142,28 +142,67 @@ std::optional<float> exact_form_factor(const Vec3& x, const Vec3& n, const ShotS
                                       src.axis, close ? Arithmetic::Single : Arithmetic::Double);
 }
 
-// One fan of shadow rays from x (moved off its surface) to the ends of the active samples:
-// scratch.blocked[j] for scratch.active[j].
-void trace_active(const Vec3& x, const Vec3& n, const ShotSource& src, size_t na,
-                  const VisibilityBackend& vis, const GatherSettings& st, GatherScratch& scratch) {
-  scratch.end_x.resize(na), scratch.end_y.resize(na), scratch.end_z.resize(na);
-  scratch.blocked.resize(na);
-  for (size_t j = 0; j < na; ++j) {
-    const uint32_t i = scratch.active[j];
+// One fan of shadow rays from x (moved off its surface) to the ends of the samples
+// active[which[0 .. count)], answers into blocked[0 .. count).
+void trace_fan(const Vec3& x, const Vec3& n, const ShotSource& src, const uint32_t* which,
+               size_t count, const VisibilityBackend& vis, const GatherSettings& st,
+               GatherScratch& scratch, uint8_t* blocked) {
+  scratch.end_x.resize(count), scratch.end_y.resize(count), scratch.end_z.resize(count);
+  for (size_t j = 0; j < count; ++j) {
+    const uint32_t i = scratch.active[which ? which[j] : j];
     scratch.end_x[j] = src.end_x[i];
     scratch.end_y[j] = src.end_y[i];
     scratch.end_z[j] = src.end_z[i];
   }
   const SegmentFan fan{off_surface(x, n, st.shadow_offset), scratch.end_x.data(),
-                       scratch.end_y.data(), scratch.end_z.data(), na};
-  vis.occluded_fan(fan, std::span<uint8_t>(scratch.blocked.data(), na), scratch.stats.rays);
+                       scratch.end_y.data(), scratch.end_z.data(), count};
+  vis.occluded_fan(fan, std::span<uint8_t>(blocked, count), scratch.stats.rays);
+}
+
+// scratch.blocked[j] for the active sample scratch.active[j], j < na: traced, or read from the
+// kept answers where the vertex was traced since the sample's ray end last moved; the ones
+// traced are kept.
+void trace_active(const Vec3& x, const Vec3& n, const ShotSource& src, size_t na,
+                  const VisibilityBackend& vis, const GatherSettings& st, GatherScratch& scratch,
+                  const VertexRays* kept) {
+  scratch.blocked.resize(na);
+  if (!kept) {
+    trace_fan(x, n, src, nullptr, na, vis, st, scratch, scratch.blocked.data());
+    return;
+  }
+  uint64_t* bits = kept->record + 1;
+  const uint64_t traced = kept->record[0];
+  scratch.unknown.resize(na);
+  size_t nu = 0;
+  for (size_t j = 0; j < na; ++j) {
+    const uint32_t i = scratch.active[j];
+    if (traced != 0 && kept->moved[i] <= traced) {
+      scratch.blocked[j] = uint8_t((bits[i / 64] >> (i % 64)) & 1u);
+    } else {
+      scratch.unknown[nu++] = uint32_t(j);
+    }
+  }
+  scratch.stats.kept_answers += na - nu;
+  if (nu > 0) {
+    // Answers land at the end of `blocked` (sized for them), then go to their places.
+    scratch.blocked.resize(na + nu);
+    uint8_t* fresh = scratch.blocked.data() + na;
+    trace_fan(x, n, src, scratch.unknown.data(), nu, vis, st, scratch, fresh);
+    for (size_t u = 0; u < nu; ++u) {
+      const uint32_t j = scratch.unknown[u], i = scratch.active[j];
+      scratch.blocked[j] = fresh[u];
+      const uint64_t bit = uint64_t(1) << (i % 64);
+      bits[i / 64] = fresh[u] ? bits[i / 64] | bit : bits[i / 64] & ~bit;
+    }
+  }
+  kept->record[0] = kept->epoch;
 }
 
 }  // namespace
 
 Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid,
                         const ShotSource& src, const VisibilityBackend& vis,
-                        const GatherSettings& st, GatherScratch& scratch) {
+                        const GatherSettings& st, GatherScratch& scratch, const VertexRays* kept) {
   const Vec3 x = x_vertex + (centroid - x_vertex) * st.inset;
   // One-sided source: a receiver behind every one of its triangles gets nothing.
   const int side = receiver_side(src, x);
@@ -204,7 +243,7 @@ Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroi
   const bool cut = max_component(glm::abs(unoccluded * scale)) < st.cut;  // |.|: negative edits
   if (st.shadows && cut) scratch.stats.intensity_cuts += na;
   const bool traced = st.shadows && !cut && na > 0;
-  if (traced) trace_active(x, n, src, na, vis, st, scratch);
+  if (traced) trace_active(x, n, src, na, vis, st, scratch, kept);
 
   // Near field (exact form factor only): the unshot radiosity weighted over the fine samples,
   // each taking its stratum's visibility.

@@ -5,6 +5,7 @@
 #include <functional>
 #include <vector>
 
+#include "solver/kept_rays.h"
 #include "solver/shot_source.h"
 #include "solver/solver_state.h"
 
@@ -17,6 +18,7 @@ struct GatherScratch {
   std::vector<uint8_t> blocked;
   std::vector<float> weight;  // coarse samples' kernels
   std::vector<uint32_t> active;
+  std::vector<uint32_t> unknown;      // active samples (indices into `active`) with no kept answer
   std::vector<float> coarse_visible;  // near field: 1 or 0 per coarse sample
   SolverStats stats;
 };
@@ -37,10 +39,12 @@ int receiver_side(const ShotSource& src, const Vec3& x);
 /// with unit normal `n` on a receiving polygon whose centroid is `centroid` gets from `src`.
 /// x is first moved a tiny fraction towards the centroid, so a vertex on the line where two
 /// polygons meet is evaluated inside its own polygon, where the neighbour is not edge-on.
-/// Thread-safe given a per-thread scratch.
+/// With `kept`, the shadow rays whose answers it holds are not traced again, and the answers
+/// of those traced are kept in it (kept_rays.h); the result is the same. Thread-safe given a
+/// per-thread scratch (and a record of kept answers no other thread uses).
 Vec3 gather_from_source(const Vec3& x, const Vec3& n, const Vec3& centroid, const ShotSource& src,
                         const VisibilityBackend& vis, const GatherSettings& settings,
-                        GatherScratch& scratch);
+                        GatherScratch& scratch, const VertexRays* kept = nullptr);
 
 /// The frame of every parallel gathering loop: body(begin, end, scratch) over [0, n) in chunks
 /// of about `grain`, each chunk on one thread with denormals flushed (core/denormals.h) and that

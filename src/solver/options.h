@@ -1,6 +1,7 @@
 // Settings of the progressive radiosity solver.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 namespace rad {
@@ -65,6 +66,8 @@ struct SolverOptions {
   /// term and keeps it as negative unshot radiosity. Off by default: it converges in fewer shots,
   /// but subdivision then follows transient values, which costs accuracy.
   bool overshoot = false;
+  /// Memory for shadow-ray answers kept between shots of the same cluster (kept_rays.h); 0: none.
+  size_t kept_rays_bytes = size_t(512) << 20;
   int64_t max_shots = -1;   // < 0: no limit
   double time_limit = 0.0;  // seconds; <= 0: no limit
 };

@@ -70,11 +70,15 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
   // vertices spread across threads too.
   std::vector<VertexRange>& work = s.gather_work;
   work.clear();
-  for (const uint32_t p : receivers) {
+  for (size_t i = 0; i < receivers.size(); ++i) {
+    const uint32_t p = receivers[i];
     const uint32_t nv = uint32_t(s.mesh.polygons[p].vertex_count());
     const uint32_t step = nv < 256 ? nv : 64;
-    for (uint32_t v = 0; v < nv; v += step) work.push_back({p, v, std::min(nv, v + step)});
+    for (uint32_t v = 0; v < nv; v += step) {
+      work.push_back({p, v, std::min(nv, v + step), uint32_t(i)});
+    }
   }
+  KeptRays* const kept = prepare_kept_rays(s, src);
   parallel_gather(work.size(), 1, s.stats, [&](size_t begin, size_t end, GatherScratch& sc) {
     for (size_t i = begin; i != end; ++i) {
       const VertexRange& w = work[i];
@@ -92,7 +96,9 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
           if (received[next++->from_polygon]) continue;
         }
         MeshVertex& x = mesh.vertices[v];
-        const Vec3 dh = gather_from_source(x.position, n, centroid, src, vis, own, sc);
+        const VertexRays rays = kept ? vertex_rays(*kept, w.receiver, v) : VertexRays{};
+        const Vec3 dh =
+            gather_from_source(x.position, n, centroid, src, vis, own, sc, kept ? &rays : nullptr);
         x.irradiance += dh;
         x.unshot += rho * dh;
         x.shot = dh;

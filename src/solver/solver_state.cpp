@@ -21,6 +21,7 @@ namespace rad {
 SolverStats& SolverStats::operator+=(const SolverStats& o) {
   rays += o.rays;
   intensity_cuts += o.intensity_cuts;
+  kept_answers += o.kept_answers;
   culled += o.culled;
   vertex_evaluations += o.vertex_evaluations;
   subdivisions += o.subdivisions;

@@ -13,6 +13,7 @@
 #include "hierarchy/hierarchy.h"
 #include "mesh/patch_mesh.h"
 #include "solver/clusters.h"
+#include "solver/kept_rays.h"
 #include "solver/options.h"
 #include "solver/shot_source.h"
 #include "visibility/backend.h"
@@ -23,6 +24,7 @@ namespace rad {
 struct SolverStats {
   VisibilityStats rays;
   uint64_t intensity_cuts = 0;      // shadow rays skipped by the intensity cut
+  uint64_t kept_answers = 0;        // shadow rays not traced again: answer kept (kept_rays.h)
   uint64_t culled = 0;              // vertex evaluations skipped: source behind or facing away
   uint64_t vertex_evaluations = 0;  // vertex-to-source gathers computed
   uint64_t subdivisions = 0;        // elements split into four
@@ -81,6 +83,7 @@ class Ranks;
 /// Vertices [begin, end) of one polygon: a work item of a shot's gathering loop.
 struct VertexRange {
   uint32_t polygon = 0, begin = 0, end = 0;
+  uint32_t receiver = 0;  // the polygon's index in SolverState::receivers
 };
 
 __extension__ typedef __int128 Fixed128;  // GCC's and clang's 128-bit integer
@@ -130,6 +133,10 @@ struct SolverState {
   std::vector<uint8_t> received;
   std::vector<uint32_t> receivers;
   std::vector<VertexRange> gather_work;  // the receivers' vertices in work items (shoot.cpp)
+  /// Per cluster shot so far: its shadow-ray answers kept for its next shot (kept_rays.h), and
+  /// the bytes they hold in all.
+  std::unordered_map<int32_t, KeptRays> kept_rays;
+  size_t kept_rays_bytes = 0;
   /// Under MPI (solver/distribute.h): the ranks solving together, the owner of each cluster and
   /// which polygons are this rank's. One process: null and empty, every polygon its own.
   Ranks* ranks = nullptr;

@@ -1,0 +1,52 @@
+// Shadow-ray answers kept from one shot of a cluster to its next, which casts the same rays.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "solver/shot_source.h"
+
+namespace rad {
+
+struct SolverState;
+
+/// One cluster's shadow-ray answers, kept for its next shot. A closed room shoots its walls again
+/// and again (each time with what the furniture and the other walls sent back), and each shot of
+/// a wall casts the same rays as the last: the receiving vertices, the samples' strata and which
+/// samples face a vertex are geometry; only where a stratum's ray ends (its point nearest the
+/// centroid of its unshot power) may move. So each vertex keeps one answer per sample, and a shot
+/// traces only the samples whose end moved since the vertex was last traced, and the vertices
+/// never traced (new ones, or skipped by the intensity cut). Every backend's answer is a function
+/// of the segment alone (visibility/backend.h), so the radiosity is bit for bit that of tracing
+/// every ray.
+struct KeptRays {
+  uint32_t epoch = 0;                      // shots of the cluster since its answers were kept
+  uint32_t words = 0;                      // 64-bit words of answers per vertex
+  std::vector<float> end_x, end_y, end_z;  // per sample: where its rays ended at the last shot
+  std::vector<uint32_t> moved;             // per sample: the epoch its end last moved
+  std::vector<uint32_t> receivers;         // the polygons that received, in order
+  /// Per receiver, per vertex, 1 + words: the epoch the vertex was last traced (0: never), then
+  /// one bit per sample, set where its ray was blocked.
+  std::vector<std::vector<uint64_t>> answers;
+  size_t bytes = 0;  // what answers and receivers hold
+};
+
+/// One vertex's kept answers, as gather_from_source reads and writes them.
+struct VertexRays {
+  uint64_t* record = nullptr;       // [epoch traced, blocked bits...]
+  uint32_t epoch = 0;               // this shot's
+  const uint32_t* moved = nullptr;  // per sample: the epoch its end last moved
+};
+
+/// The kept answers for the shot of `src` to s.receivers, made ready (sized for every receiving
+/// vertex, the moved ends marked), or null: the first shot of a cluster keeps nothing (most
+/// clusters shoot once; one shot twice is likely to shoot again), nor does any once the answers
+/// kept fill s.options.kept_rays_bytes.
+KeptRays* prepare_kept_rays(SolverState& s, const ShotSource& src);
+
+/// Vertex v of receiver i (its index in s.receivers) in `kept`.
+inline VertexRays vertex_rays(KeptRays& kept, size_t i, uint32_t v) {
+  return {kept.answers[i].data() + size_t(v) * (1 + kept.words), kept.epoch, kept.moved.data()};
+}
+
+}  // namespace rad
