@@ -5,17 +5,25 @@
 namespace rad {
 
 KeptRays* prepare_kept_rays(SolverState& s, const ShotSource& src) {
+  if (s.cluster_last_shot.size() != s.clusters.size()) {
+    s.cluster_last_shot.assign(s.clusters.size(), 0);
+  }
+  // This shot's number (1-based: s.shots counts the shots done before it).
+  const uint64_t shot = uint64_t(s.shots) + 1;
+  uint64_t& last = s.cluster_last_shot[size_t(src.cluster)];
+  const bool again_soon = last != 0 && shot - last <= kKeptWithin;
+  last = shot;
   if (s.options.kept_rays_bytes == 0 || src.sample_count == 0) return nullptr;
-  const auto [it, first_shot] = s.kept_rays.try_emplace(src.cluster);
-  if (first_shot) return nullptr;
-  KeptRays& k = it->second;
+  if (!again_soon && !s.kept_rays.contains(src.cluster)) return nullptr;
   const uint32_t words = uint32_t((src.sample_count + 63) / 64);
   size_t wanted = s.receivers.size() * (sizeof(uint32_t) + sizeof(std::vector<uint64_t>));
   for (uint32_t p : s.receivers) {
     wanted += s.mesh.polygons[p].vertex_count() * (1 + words) * sizeof(uint64_t);
   }
-  const size_t held = k.bytes;
+  const auto found = s.kept_rays.find(src.cluster);
+  const size_t held = found == s.kept_rays.end() ? 0 : found->second.bytes;
   if (s.kept_rays_bytes - held + wanted > s.options.kept_rays_bytes) return nullptr;
+  KeptRays& k = found == s.kept_rays.end() ? s.kept_rays[src.cluster] : found->second;
   // The receivers are geometry too, but the answers are only good for the same list.
   if (k.words != words || k.receivers != s.receivers) {
     k = KeptRays{};

@@ -38,10 +38,17 @@ struct VertexRays {
   const uint32_t* moved = nullptr;  // per sample: the epoch its end last moved
 };
 
+/// A cluster's answers are kept once it shoots again within this many shots of its last shot.
+/// A room's walls shoot every few tens of shots (the generated furnished room: each of its 10
+/// big clusters about every 20), a building's clusters once or twice in thousands of shots (the
+/// 1M-triangle building: 3,543 shots of 99k clusters in 600 s): kept from any third shot on,
+/// its answers filled 512 MiB and were never used.
+inline constexpr uint64_t kKeptWithin = 64;
+
 /// The kept answers for the shot of `src` to s.receivers, made ready (sized for every receiving
-/// vertex, the moved ends marked), or null: the first shot of a cluster keeps nothing (most
-/// clusters shoot once; one shot twice is likely to shoot again), nor does any once the answers
-/// kept fill s.options.kept_rays_bytes.
+/// vertex, the moved ends marked), or null: unless the cluster shot within kKeptWithin shots
+/// before (or has answers kept already), or when the answers kept would fill
+/// s.options.kept_rays_bytes.
 KeptRays* prepare_kept_rays(SolverState& s, const ShotSource& src);
 
 /// Vertex v of receiver i (its index in s.receivers) in `kept`.

@@ -133,10 +133,11 @@ struct SolverState {
   std::vector<uint8_t> received;
   std::vector<uint32_t> receivers;
   std::vector<VertexRange> gather_work;  // the receivers' vertices in work items (shoot.cpp)
-  /// Per cluster shot so far: its shadow-ray answers kept for its next shot (kept_rays.h), and
-  /// the bytes they hold in all.
+  /// Per cluster shot often enough: its shadow-ray answers kept for its next shot
+  /// (kept_rays.h), and the bytes they hold in all.
   std::unordered_map<int32_t, KeptRays> kept_rays;
   size_t kept_rays_bytes = 0;
+  std::vector<uint64_t> cluster_last_shot;  // per cluster: the number of its last shot, 0: none
   /// Under MPI (solver/distribute.h): the ranks solving together, the owner of each cluster and
   /// which polygons are this rank's. One process: null and empty, every polygon its own.
   Ranks* ranks = nullptr;
