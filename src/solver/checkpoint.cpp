@@ -83,6 +83,10 @@ void write_checkpoint(const std::string& path, const SolverState& s, uint64_t fi
 }
 
 void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerprint) {
+  // Kept shadow-ray answers belong to the mesh being replaced.
+  s.kept_rays.clear();
+  s.kept_rays_bytes = 0;
+  s.cluster_last_shot.clear();
   const std::string data = read_file(path);
   if (data.size() < kHeader || std::memcmp(data.data(), kMagic, sizeof kMagic) != 0) {
     throw Error(SourceLoc{path}, "not a rad checkpoint");

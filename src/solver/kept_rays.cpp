@@ -4,6 +4,19 @@
 
 namespace rad {
 
+namespace {
+
+// What k holds, by capacity: the answers, the receivers list, the per-sample ends and epochs.
+size_t held_bytes(const KeptRays& k) {
+  size_t b = k.answers.capacity() * sizeof(std::vector<uint64_t>) +
+             k.receivers.capacity() * sizeof(uint32_t) +
+             k.moved.capacity() * (sizeof(uint32_t) + 3 * sizeof(float));
+  for (const std::vector<uint64_t>& a : k.answers) b += a.capacity() * sizeof(uint64_t);
+  return b;
+}
+
+}  // namespace
+
 KeptRays* prepare_kept_rays(SolverState& s, const ShotSource& src) {
   if (s.cluster_last_shot.size() != s.clusters.size()) {
     s.cluster_last_shot.assign(s.clusters.size(), 0);
@@ -13,19 +26,46 @@ KeptRays* prepare_kept_rays(SolverState& s, const ShotSource& src) {
   uint64_t& last = s.cluster_last_shot[size_t(src.cluster)];
   const bool again_soon = last != 0 && shot - last <= kKeptWithin;
   last = shot;
+  auto found = s.kept_rays.find(src.cluster);
   if (s.options.kept_rays_bytes == 0 || src.sample_count == 0) return nullptr;
-  if (!again_soon && !s.kept_rays.contains(src.cluster)) return nullptr;
+  if (!again_soon && found == s.kept_rays.end()) return nullptr;
+
   const uint32_t words = uint32_t((src.sample_count + 63) / 64);
-  size_t wanted = s.receivers.size() * (sizeof(uint32_t) + sizeof(std::vector<uint64_t>));
+  size_t wanted = s.receivers.size() * (sizeof(uint32_t) + sizeof(std::vector<uint64_t>)) +
+                  src.sample_count * (sizeof(uint32_t) + 3 * sizeof(float));
   for (uint32_t p : s.receivers) {
     wanted += s.mesh.polygons[p].vertex_count() * (1 + words) * sizeof(uint64_t);
   }
-  const auto found = s.kept_rays.find(src.cluster);
-  const size_t held = found == s.kept_rays.end() ? 0 : found->second.bytes;
-  if (s.kept_rays_bytes - held + wanted > s.options.kept_rays_bytes) return nullptr;
+  const auto fits = [&] {
+    const size_t held = found == s.kept_rays.end() ? 0 : found->second.bytes;
+    return s.kept_rays_bytes - held + wanted <= s.options.kept_rays_bytes;
+  };
+  if (!fits()) {
+    // Make room from the clusters that have not shot for a while: they may never again.
+    for (auto it = s.kept_rays.begin(); it != s.kept_rays.end();) {
+      if (it->first != src.cluster && shot - s.cluster_last_shot[size_t(it->first)] > kKeptWithin) {
+        s.kept_rays_bytes -= it->second.bytes;
+        it = s.kept_rays.erase(it);
+      } else {
+        ++it;
+      }
+    }
+    found = s.kept_rays.find(src.cluster);
+    if (!fits()) {
+      // This cluster's answers have outgrown the memory left (its receivers subdivide): they
+      // would never fit again.
+      if (found != s.kept_rays.end()) {
+        s.kept_rays_bytes -= found->second.bytes;
+        s.kept_rays.erase(found);
+      }
+      return nullptr;
+    }
+  }
   KeptRays& k = found == s.kept_rays.end() ? s.kept_rays[src.cluster] : found->second;
-  // The receivers are geometry too, but the answers are only good for the same list.
-  if (k.words != words || k.receivers != s.receivers) {
+  // The receivers and the samples are geometry too, but the answers are only good for the
+  // same list and the same samples.
+  if (k.words != words || k.moved.size() != src.sample_count || k.receivers != s.receivers) {
+    s.kept_rays_bytes -= k.bytes;
     k = KeptRays{};
     k.words = words;
     k.receivers = s.receivers;
@@ -43,11 +83,15 @@ KeptRays* prepare_kept_rays(SolverState& s, const ShotSource& src) {
   }
   k.answers.resize(s.receivers.size());
   for (size_t i = 0; i < s.receivers.size(); ++i) {
-    // Vertices made since the last shot start at epoch 0: never traced.
-    k.answers[i].resize(s.mesh.polygons[s.receivers[i]].vertex_count() * (1 + words), 0);
+    // Vertices made since the last shot start at epoch 0: never traced. Exact sizes, so what
+    // is held is what was counted.
+    const size_t n = s.mesh.polygons[s.receivers[i]].vertex_count() * (1 + words);
+    k.answers[i].reserve(n);
+    k.answers[i].resize(n, 0);
   }
-  s.kept_rays_bytes = s.kept_rays_bytes - held + wanted;
-  k.bytes = wanted;
+  s.kept_rays_bytes -= k.bytes;
+  k.bytes = held_bytes(k);
+  s.kept_rays_bytes += k.bytes;
   return &k;
 }
 

@@ -67,7 +67,7 @@ struct SolverOptions {
   /// but subdivision then follows transient values, which costs accuracy.
   bool overshoot = false;
   /// Memory for shadow-ray answers kept between shots of the same cluster (kept_rays.h); 0: none.
-  size_t kept_rays_bytes = size_t(512) << 20;
+  size_t kept_rays_bytes = size_t(128) << 20;
   int64_t max_shots = -1;   // < 0: no limit
   double time_limit = 0.0;  // seconds; <= 0: no limit
 };

@@ -10,6 +10,12 @@
 #include "core/math.h"
 #include "hierarchy/hierarchy.h"
 
+// The test relies on IEEE comparisons: a NaN or infinite t (parallel segments, padding lanes)
+// must fail 0 < t < 1.
+#if defined(__FAST_MATH__) || (defined(__FINITE_MATH_ONLY__) && __FINITE_MATH_ONLY__)
+#error "visibility/triangle_test.h needs IEEE NaN and infinity semantics (no -ffast-math)"
+#endif
+
 namespace rad {
 
 /// One triangle a, b, c prepared for the SPEC §6 test, 64 bytes (one cache line):

@@ -75,6 +75,16 @@ TEST(KeptRays, CornellBoxGetsTheRadiosityOfTracingEveryRay) {
   EXPECT_EQ(kept.rays + kept.kept, traced.rays);
 }
 
+// The grid's answers too (its walk and its shadow cache, which tries the last blocker of the
+// fan first, see the same segments whether or not some of the fan's rays are kept).
+TEST(KeptRays, GridGetsTheRadiosityOfTracingEveryRay) {
+  const Hierarchy h = build_hierarchy(parse_scene_file(RAD_SOURCE_DIR "/scenes/cornell_box.des"));
+  const Solved traced = solve_with(h, BackendKind::Grid, 0, 40, false);
+  const Solved kept = solve_with(h, BackendKind::Grid, SolverOptions{}.kept_rays_bytes, 40, false);
+  expect_identical(traced, kept);
+  EXPECT_GT(kept.kept, 0u);
+}
+
 // Curved furniture, whose strata's ray ends move from shot to shot.
 TEST(KeptRays, FurnishedRoomGetsTheRadiosityOfTracingEveryRay) {
   const Hierarchy h = build_hierarchy(generate_scene(SceneKind::FurnishedRoom, 3000, 1));
