@@ -65,36 +65,37 @@ void expect_identical(const Solved& a, const Solved& b) {
       0, std::memcmp(a.irradiance.data(), b.irradiance.data(), a.irradiance.size() * sizeof(Vec3)));
 }
 
-TEST(KeptRays, CornellBoxGetsTheRadiosityOfTracingEveryRay) {
-  const Hierarchy h = build_hierarchy(parse_scene_file(RAD_SOURCE_DIR "/scenes/cornell_box.des"));
-  const Solved traced = solve_with(h, BackendKind::Embree, 0, 30, true);
-  const Solved kept = solve_with(h, BackendKind::Embree, SolverOptions{}.kept_rays_bytes, 30, true);
+// Solves with no answers kept and with the default budget; expects the same radiosity, some
+// answers kept, and every ray either traced or kept. Returns the solve with kept answers.
+Solved expect_same_as_tracing_every_ray(const Hierarchy& h, BackendKind backend, int shots,
+                                        bool edit) {
+  const Solved traced = solve_with(h, backend, 0, shots, edit);
+  const Solved kept = solve_with(h, backend, SolverOptions{}.kept_rays_bytes, shots, edit);
   expect_identical(traced, kept);
   EXPECT_EQ(traced.kept, 0u);
-  EXPECT_GT(kept.kept, kept.rays / 4) << "the walls shoot again and again";
+  EXPECT_GT(kept.kept, 0u);
   EXPECT_EQ(kept.rays + kept.kept, traced.rays);
+  return kept;
+}
+
+TEST(KeptRays, CornellBoxGetsTheRadiosityOfTracingEveryRay) {
+  const Hierarchy h = build_hierarchy(parse_scene_file(RAD_SOURCE_DIR "/scenes/cornell_box.des"));
+  const Solved kept = expect_same_as_tracing_every_ray(h, BackendKind::Embree, 30, true);
+  EXPECT_GT(kept.kept, kept.rays / 4) << "the walls shoot again and again";
 }
 
 // The grid's answers too (its walk and its shadow cache, which tries the last blocker of the
 // fan first, see the same segments whether or not some of the fan's rays are kept).
 TEST(KeptRays, GridGetsTheRadiosityOfTracingEveryRay) {
   const Hierarchy h = build_hierarchy(parse_scene_file(RAD_SOURCE_DIR "/scenes/cornell_box.des"));
-  const Solved traced = solve_with(h, BackendKind::Grid, 0, 40, false);
-  const Solved kept = solve_with(h, BackendKind::Grid, SolverOptions{}.kept_rays_bytes, 40, false);
-  expect_identical(traced, kept);
-  EXPECT_GT(kept.kept, 0u);
+  expect_same_as_tracing_every_ray(h, BackendKind::Grid, 40, false);
 }
 
 // Curved furniture, whose strata's ray ends move from shot to shot.
 TEST(KeptRays, FurnishedRoomGetsTheRadiosityOfTracingEveryRay) {
   const Hierarchy h = build_hierarchy(generate_scene(SceneKind::FurnishedRoom, 3000, 1));
-  const Solved traced = solve_with(h, BackendKind::Embree, 0, 40, false);
-  const Solved kept =
-      solve_with(h, BackendKind::Embree, SolverOptions{}.kept_rays_bytes, 40, false);
-  expect_identical(traced, kept);
+  const Solved kept = expect_same_as_tracing_every_ray(h, BackendKind::Embree, 40, false);
   EXPECT_TRUE(kept.an_end_moved);
-  EXPECT_GT(kept.kept, 0u);
-  EXPECT_EQ(kept.rays + kept.kept, traced.rays);
 }
 
 TEST(KeptRays, NoMoreThanTheBudget) {
