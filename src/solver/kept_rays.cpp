@@ -4,19 +4,6 @@
 
 namespace rad {
 
-namespace {
-
-// What k holds, by capacity: the answers, the receivers list, the per-sample ends and epochs.
-size_t held_bytes(const KeptRays& k) {
-  size_t b = k.answers.capacity() * sizeof(std::vector<uint64_t>) +
-             k.receivers.capacity() * sizeof(uint32_t) +
-             k.moved.capacity() * (sizeof(uint32_t) + 3 * sizeof(float));
-  for (const std::vector<uint64_t>& a : k.answers) b += a.capacity() * sizeof(uint64_t);
-  return b;
-}
-
-}  // namespace
-
 KeptRays* prepare_kept_rays(SolverState& s, const ShotSource& src) {
   if (s.cluster_last_shot.size() != s.clusters.size()) {
     s.cluster_last_shot.assign(s.clusters.size(), 0);
@@ -83,15 +70,14 @@ KeptRays* prepare_kept_rays(SolverState& s, const ShotSource& src) {
   }
   k.answers.resize(s.receivers.size());
   for (size_t i = 0; i < s.receivers.size(); ++i) {
-    // Vertices made since the last shot start at epoch 0: never traced. Exact sizes, so what
-    // is held is what was counted.
+    // Vertices made since the last shot start at epoch 0: never traced. Reserved exactly (a
+    // vector's growth would hold up to twice as much), so `wanted` is what is held.
     const size_t n = s.mesh.polygons[s.receivers[i]].vertex_count() * (1 + words);
     k.answers[i].reserve(n);
     k.answers[i].resize(n, 0);
   }
-  s.kept_rays_bytes -= k.bytes;
-  k.bytes = held_bytes(k);
-  s.kept_rays_bytes += k.bytes;
+  s.kept_rays_bytes = s.kept_rays_bytes - k.bytes + wanted;
+  k.bytes = wanted;
   return &k;
 }
 

@@ -28,7 +28,7 @@ struct KeptRays {
   /// Per receiver, per vertex, 1 + words: the epoch the vertex was last traced (0: never), then
   /// one bit per sample, set where its ray was blocked.
   std::vector<std::vector<uint64_t>> answers;
-  size_t bytes = 0;  // what answers and receivers hold
+  size_t bytes = 0;  // what its vectors hold
 };
 
 /// One vertex's kept answers, as gather_from_source reads and writes them.

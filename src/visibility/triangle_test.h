@@ -79,12 +79,10 @@ struct alignas(32) TrianglePacket {
   LanesVec3 s_a, s_b, c;
 
   void set(uint32_t lane, const TriangleRecord& r) {
-    for (int a = 0; a < 3; ++a) {
-      (&normal.x)[a][lane] = r.normal[a];
-      (&s_a.x)[a][lane] = r.s_a[a];
-      (&s_b.x)[a][lane] = r.s_b[a];
-      (&c.x)[a][lane] = r.c[a];
-    }
+    const auto put = [lane](LanesVec3& to, const Vec3& v) {
+      to.x[lane] = v.x, to.y[lane] = v.y, to.z[lane] = v.z;
+    };
+    put(normal, r.normal), put(s_a, r.s_a), put(s_b, r.s_b), put(c, r.c);
     plane_offset[lane] = r.plane_offset;
   }
 };
