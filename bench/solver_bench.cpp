@@ -189,7 +189,7 @@ std::unique_ptr<ShotCase> prepare_shot(SolverState s, const VisibilityBackend& v
   shoot_to_receivers(s, c->src, recorder, c->major);
   c->received = s.received;
   c->after = s;
-  refine_after_shot(s, c->src, vis, c->major);
+  refine_after_shot(s, c->src, vis, c->major, s.receivers);
   c->size_refined = state_size(s);
   for (size_t p = 0; p < c->received.size(); ++p) {
     if (c->received[p]) c->receivers += c->after.mesh.polygons[p].vertex_count();
@@ -321,7 +321,7 @@ void bm_refine(benchmark::State& st, const SceneSpec& spec, bool later, int thre
   for (auto _ : st) {
     SolverState s = c.after;
     const auto t0 = std::chrono::steady_clock::now();
-    refine_after_shot(s, c.src, vis, c.major);  // c.after holds the shot's receivers
+    refine_after_shot(s, c.src, vis, c.major, s.receivers);  // c.after holds the receivers
     const auto t1 = std::chrono::steady_clock::now();
     st.SetIterationTime(std::chrono::duration<double>(t1 - t0).count());
     splits += double(s.stats.subdivisions - c.after.stats.subdivisions);

@@ -26,7 +26,29 @@ struct EdgeMidpoint {
   int64_t exact;
 };
 
+// Whether element e of polygon m is to be split: its vertices' radiosities differ by more than
+// `limit` and it is still at least `min_split_size`. Which of its edges differ: in *d (01, 12, 20).
+bool needs_split(const PolygonMesh& m, const Material& mat, uint32_t e, float limit,
+                 float min_split_size, std::array<bool, 3>* d) {
+  auto B = [&](uint32_t v) { return mat.emission + mat.reflectance * m.vertices[v].irradiance; };
+  const Element& el = m.elements[e];
+  const Vec3 b0 = B(el.v[0]), b1 = B(el.v[1]), b2 = B(el.v[2]);
+  *d = {differs(b0, b1, limit), differs(b1, b2, limit), differs(b2, b0, limit)};
+  return ((*d)[0] || (*d)[1] || (*d)[2]) && element_size(m, e) >= min_split_size;
+}
+
 }  // namespace
+
+bool needs_refinement(const SolverState& s, uint32_t p) {
+  const PolygonMesh& m = s.mesh.polygons[p];
+  const Material& mat = s.material_of(p);
+  const float limit = s.options.subdivision_threshold * s.radiosity_scale;
+  bool any = false;
+  std::array<bool, 3> d;
+  for_each_leaf(
+      m, [&](uint32_t e) { any = any || needs_split(m, mat, e, limit, 2.0f * s.min_size, &d); });
+  return any;
+}
 
 Vec3 regather_shots(const SolverState& s, const Vec3& x, uint32_t polygon, bool major_only,
                     const VisibilityBackend& vis, const GatherSettings& settings,
@@ -54,11 +76,12 @@ template <typename Compute>
 void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
             const Compute& compute) {
   const Triangles& tris = s.hierarchy->triangles;
+  const float limit = s.options.subdivision_threshold * s.radiosity_scale;
+  const float min_split_size = 2.0f * s.min_size;  // children keep sizes >= min_size
   // Only the given polygons are looked at: a shot of a Lights list reaches a few rooms of a
   // building, and per-polygon work over the whole scene would cost more than the shot.
   const size_t np = polygons.size();
-  const float limit = s.options.subdivision_threshold * s.radiosity_scale;
-  const float min_split_size = 2.0f * s.min_size;  // children keep sizes >= min_size
+  if (np == 0) return;
   const bool all_exact = s.options.midpoints == MidpointRule::Exact || !after_shot;
 
   std::vector<std::vector<uint32_t>> check(np), next(np);
@@ -87,15 +110,11 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
         const bool sharing = shares_vertices(s.clusters, p);
         PolygonMesh& m = s.mesh.polygons[p];
         const Material& mat = s.material_of(p);
-        auto B = [&](uint32_t v) {
-          return mat.emission + mat.reflectance * m.vertices[v].irradiance;
-        };
         auto consider = [&](uint32_t e) {
           const uint32_t v[3] = {m.elements[e].v[0], m.elements[e].v[1], m.elements[e].v[2]};
-          const Vec3 b0 = B(v[0]), b1 = B(v[1]), b2 = B(v[2]);
-          const bool d01 = differs(b0, b1, limit), d12 = differs(b1, b2, limit),
-                     d20 = differs(b2, b0, limit);
-          if (!(d01 || d12 || d20) || element_size(m, e) < min_split_size) return;
+          std::array<bool, 3> d;
+          if (!needs_split(m, mat, e, limit, min_split_size, &d)) return;
+          const bool d01 = d[0], d12 = d[1], d20 = d[2];
           const bool exact_edge[3][3] = {{false, d01, d20}, {d01, false, d12}, {d20, d12, false}};
           auto index_of = [&](uint32_t x) { return x == v[0] ? 0 : x == v[1] ? 1 : 2; };
           NewMidpoint created[3];
@@ -188,10 +207,10 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
 }  // namespace
 
 void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,
-                       bool major) {
+                       bool major, std::span<const uint32_t> polygons) {
   const Triangles& tris = s.hierarchy->triangles;
   const GatherSettings settings = gather_settings(s);
-  refine(s, s.receivers, true, [&](const ExactVertex& x, GatherScratch& sc) {
+  refine(s, polygons, true, [&](const ExactVertex& x, GatherScratch& sc) {
     PolygonMesh& m = s.mesh.polygons[x.polygon];
     const Vec3 rho = s.material_of(x.polygon).reflectance;
     const MeshVertex &a = m.vertices[x.a], &b = m.vertices[x.b];
@@ -220,7 +239,13 @@ void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBa
 void refine_after_edit(SolverState& s, const Vec3& d_rho, const VisibilityBackend& vis,
                        std::span<const uint32_t> polygons) {
   const GatherSettings settings = gather_settings(s);
-  refine(s, polygons, false, [&](const ExactVertex& x, GatherScratch& sc) {
+  std::vector<uint8_t> needs(polygons.size());
+  tbb::parallel_for(size_t(0), polygons.size(),
+                    [&](size_t i) { needs[i] = needs_refinement(s, polygons[i]); });
+  std::vector<uint32_t> to_split;
+  for (size_t i = 0; i < polygons.size(); ++i)
+    if (needs[i]) to_split.push_back(polygons[i]);
+  refine(s, to_split, false, [&](const ExactVertex& x, GatherScratch& sc) {
     PolygonMesh& m = s.mesh.polygons[x.polygon];
     const MeshVertex &a = m.vertices[x.a], &b = m.vertices[x.b];
     MeshVertex& mid = m.vertices[x.vertex];

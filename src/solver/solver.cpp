@@ -79,24 +79,40 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   const bool major = src.major;
   shoot_to_receivers(s, src, vis, major);
   const auto t1 = std::chrono::steady_clock::now();
-  refine_after_shot(s, src, vis, major);
-  s.shot_log.push_back(std::move(src));
 
-  // Bookkeeping per received polygon, summed in index order so the result does not depend on
-  // the thread count.
+  // Bookkeeping per received polygon: the energy it absorbed and the energy it holds unshot,
+  // summed in index order so the result does not depend on the thread count. One look at each
+  // receiver also says whether it needs refining (most of a large scene's do not); those
+  // refined are counted again after.
   const std::vector<uint32_t>& receivers = s.receivers;
   std::vector<double> absorbed(receivers.size(), 0.0), unshot(receivers.size(), 0.0);
-  tbb::parallel_for(size_t(0), receivers.size(), [&](size_t i) {
+  std::vector<uint8_t> refining(receivers.size(), 0);
+  auto count = [&](size_t i) {
     const uint32_t p = receivers[i];
     const PolygonMesh& m = s.mesh.polygons[p];
     const Vec3 absorptance = Vec3(1.0f) - s.material_of(p).reflectance;
-    double a = 0.0;
-    for_each_leaf_vertex_sum(
-        m, [](const MeshVertex& v) { return v.shot; },
-        [&](float area, Vec3 sum) { a += double(area) * mean_component(absorptance * sum) / 3.0; });
+    double a = 0.0, u = 0.0;  // one walk for both (u as polygon_unshot_energy sums it)
+    for_each_leaf(m, [&](uint32_t e) {
+      const Element& el = m.elements[e];
+      const MeshVertex &v0 = m.vertices[el.v[0]], &v1 = m.vertices[el.v[1]],
+                       &v2 = m.vertices[el.v[2]];
+      a += double(el.area) * mean_component(absorptance * (v0.shot + v1.shot + v2.shot)) / 3.0;
+      u += double(el.area) * double(mean_component(v0.unshot + v1.unshot + v2.unshot)) / 3.0;
+    });
     absorbed[i] = a;
-    unshot[i] = polygon_unshot_energy(m);
+    unshot[i] = u;
+  };
+  tbb::parallel_for(size_t(0), receivers.size(), [&](size_t i) {
+    count(i);
+    refining[i] = needs_refinement(s, receivers[i]);
   });
+  std::vector<uint32_t> refined, to_refine;
+  for (size_t i = 0; i < receivers.size(); ++i) {
+    if (refining[i]) refined.push_back(uint32_t(i)), to_refine.push_back(receivers[i]);
+  }
+  refine_after_shot(s, src, vis, major, to_refine);
+  s.shot_log.push_back(std::move(src));
+  tbb::parallel_for(size_t(0), refined.size(), [&](size_t j) { count(refined[j]); });
   for (double a : absorbed) s.absorbed_energy += a;
   // The totals and the clusters' energies follow the polygons the shot changed, not the scene.
   set_unshot_energies(s, receivers, unshot);
