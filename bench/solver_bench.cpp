@@ -110,9 +110,10 @@ struct StateBytes {
 
 StateBytes solver_state_bytes(const SolverState& s) {
   StateBytes b;
-  b.polygon_structs = heap_bytes(s.mesh.polygons);
-  for (const PolygonMesh& p : s.mesh.polygons) {
-    b.vertex_arrays += heap_bytes(p.vertices);
+  b.polygon_structs = heap_bytes(s.mesh.polygons) + heap_bytes(s.vertex_states);
+  for (size_t q = 0; q < s.mesh.polygons.size(); ++q) {
+    const PolygonMesh& p = s.mesh.polygons[q];
+    b.vertex_arrays += heap_bytes(p.positions) + heap_bytes(s.vertex_states[q]);
     b.elements += heap_bytes(p.elements);
     if (p.midpoints.size() > 0) {  // allocated at the first split: the map, buckets, nodes
       const auto& m = p.midpoints.entries();
@@ -178,7 +179,7 @@ std::unique_ptr<ShotCase> prepare_shot(SolverState s, const VisibilityBackend& v
   const std::span<const uint32_t> own(k.polygons.data() + k.first[size_t(shooter->cluster)],
                                       k.polygon_count(size_t(shooter->cluster)));
   for (uint32_t p : own)
-    for (MeshVertex& v : s.mesh.polygons[p].vertices) v.unshot = Vec3(0.0f);
+    for (VertexState& v : s.vertex_states[p]) v.unshot = Vec3(0.0f);
   c->major = s.options.major_shot_fraction > 0.0 &&
              shooter->energy >= s.options.major_shot_fraction * s.emitted_energy;
   set_unshot_energies(s, own, std::vector<double>(own.size(), 0.0));

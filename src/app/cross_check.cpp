@@ -163,7 +163,7 @@ int run_cross_check(const CommandLine& cmd) {
     for (uint32_t v = 0; v < pa.vertex_count(); ++v) {
       ++compared;
       const float d = max_component(glm::abs(a.radiosity(p, v) - b.radiosity(p, v)));
-      if (d > worst) worst = d, worst_at = pa.vertices[v].position;
+      if (d > worst) worst = d, worst_at = pa.positions[v];
     }
   }
   const float relative = largest > 0.0f ? worst / largest : 0.0f;

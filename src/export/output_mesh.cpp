@@ -39,8 +39,8 @@ std::shared_ptr<const MeshGeometry> OutputMeshBuilder::update(const SolverState&
       const uint32_t q = clusters.polygons[j];
       const PolygonMesh& m = polys[q];
       for (uint32_t v = 0; v < m.vertex_count(); ++v) {
-        if (on_triangle_edge(tris.corners[q], m.vertices[v].position))
-          seams.add(m.vertices[v].position, VertexRef{q, v});
+        if (on_triangle_edge(tris.corners[q], m.positions[v]))
+          seams.add(m.positions[v], VertexRef{q, v});
       }
     }
     for (uint32_t j = clusters.first[k]; j < clusters.first[k + 1]; ++j) {
@@ -63,14 +63,11 @@ std::shared_ptr<const MeshGeometry> OutputMeshBuilder::update(const SolverState&
     const PolygonMesh& m = polys[p];
     const PolygonFaces& f = polygons_[p].faces;
     const uint32_t base = uint32_t(g->position.size());
-    for (const MeshVertex& v : m.vertices) g->position.push_back(v.position);
+    g->position.insert(g->position.end(), m.positions.begin(), m.positions.end());
     for (const auto& k : f.centroids) {
-      g->position.push_back(
-          (m.vertices[k[0]].position + m.vertices[k[1]].position + m.vertices[k[2]].position) /
-          3.0f);
+      g->position.push_back((m.positions[k[0]] + m.positions[k[1]] + m.positions[k[2]]) / 3.0f);
     }
-    for (const VertexRef& r : f.seam)
-      g->position.push_back(polys[r.polygon].vertices[r.vertex].position);
+    for (const VertexRef& r : f.seam) g->position.push_back(polys[r.polygon].positions[r.vertex]);
     for (uint32_t i : f.triangles) g->indices.push_back(base + i);
     g->face_polygon.insert(g->face_polygon.end(), f.triangles.size() / 3, int32_t(p));
   }

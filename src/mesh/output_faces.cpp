@@ -24,7 +24,7 @@ struct Interior {
   void edge(uint32_t a, uint32_t b, std::vector<uint32_t>& out) const {
     const int64_t m = p.midpoint(a, b);
     if (m < 0) {
-      if (seams) across(p.vertices[a].position, p.vertices[b].position, out);
+      if (seams) across(p.positions[a], p.positions[b], out);
       return;
     }
     edge(a, uint32_t(m), out);

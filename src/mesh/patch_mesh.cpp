@@ -3,8 +3,8 @@
 namespace rad {
 
 uint32_t PolygonMesh::add_vertex(const Vec3& p) {
-  vertices.push_back(MeshVertex{p});
-  return uint32_t(vertices.size() - 1);
+  positions.push_back(p);
+  return uint32_t(positions.size() - 1);
 }
 
 int64_t PolygonMesh::midpoint(uint32_t a, uint32_t b) const {
@@ -18,7 +18,7 @@ Mesh make_mesh(const Hierarchy& h) {
     PolygonMesh& p = m.polygons[t];
     // Exactly three and one element: most polygons of a large scene never split, and growth
     // would round the arrays up (measured: 20 bytes per vertex on a 1M-triangle scene).
-    p.vertices.reserve(3);
+    p.positions.reserve(3);
     p.elements.reserve(1);
     for (const Vec3& c : h.triangles.corners[t]) p.add_vertex(c);
     p.elements.push_back({{0, 1, 2}, -1, h.triangles.area[t]});

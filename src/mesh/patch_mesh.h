@@ -21,16 +21,6 @@ struct Element {
   bool leaf() const { return first_child < 0; }
 };
 
-/// A vertex of the radiosity mesh and what the solver keeps there. One record per vertex (not
-/// one array per quantity): a polygon that never splits costs one allocation, not five.
-struct MeshVertex {
-  Vec3 position;
-  Vec3 irradiance{0.0f};  // H: radiosity gathered from all shots so far; B = E + rho * H
-  Vec3 unshot{0.0f};      // radiosity received but not yet shot
-  Vec3 shot{0.0f};        // H gathered during the current shot only (for subdivision)
-  Vec3 major{0.0f};       // part of H gathered from the solver's major shots (see solver)
-};
-
 /// The midpoint vertex of every split edge of one polygon (key: edge_key of the two ends).
 /// Allocated on the first split: most polygons of a large scene never split, and an empty
 /// std::unordered_map alone is 56 bytes.
@@ -68,14 +58,15 @@ class MidpointMap {
 
 /// One polygon (an original triangle) and everything its subdivision created. A vertex is
 /// stored once however many elements share it, and belongs to this polygon only (the original
-/// keeps no connectivity between polygons).
+/// keeps no connectivity between polygons). What the solver keeps at each vertex is its own,
+/// in a table of the same indices (solver/solver_state.h).
 struct PolygonMesh {
-  std::vector<MeshVertex> vertices;
+  std::vector<Vec3> positions;  // the vertex table
   std::vector<Element> elements;
   MidpointMap midpoints;
 
-  size_t vertex_count() const { return vertices.size(); }
-  /// Appends a vertex with zero radiosity; returns its index.
+  size_t vertex_count() const { return positions.size(); }
+  /// Appends a vertex; returns its index.
   uint32_t add_vertex(const Vec3& p);
   /// The midpoint vertex of edge (a, b), or -1 if that edge was never split.
   int64_t midpoint(uint32_t a, uint32_t b) const;
@@ -89,7 +80,7 @@ struct Mesh {
   std::vector<PolygonMesh> polygons;  // index = triangle id of the hierarchy
 };
 
-/// One unsplit polygon per hierarchy triangle, all radiosity zero.
+/// One unsplit polygon per hierarchy triangle.
 Mesh make_mesh(const Hierarchy& h);
 
 /// Calls f(element_index) for every leaf of polygon `p`, depth-first, children in order.
@@ -112,14 +103,13 @@ void for_each_leaf(const PolygonMesh& p, F&& f) {
 
 /// The integral over polygon `p` of a vertex quantity interpolated linearly over each leaf is
 /// the sum over leaves of area x (sum of its three vertices' values) / 3. Calls
-/// f(area, value(v0) + value(v1) + value(v2)) per leaf, in for_each_leaf's order; `f` does the
-/// multiply and accumulates in the precision it needs.
+/// f(area, value(v0) + value(v1) + value(v2)) per leaf (value: of a vertex index), in
+/// for_each_leaf's order; `f` does the multiply and accumulates in the precision it needs.
 template <typename Value, typename F>
 void for_each_leaf_vertex_sum(const PolygonMesh& p, Value&& value, F&& f) {
   for_each_leaf(p, [&](uint32_t e) {
     const Element& el = p.elements[e];
-    f(el.area,
-      value(p.vertices[el.v[0]]) + value(p.vertices[el.v[1]]) + value(p.vertices[el.v[2]]));
+    f(el.area, value(el.v[0]) + value(el.v[1]) + value(el.v[2]));
   });
 }
 

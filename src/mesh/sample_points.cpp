@@ -45,11 +45,4 @@ uint32_t locate_leaf(const PolygonMesh& p, Vec3 w, Vec3* leaf_bary) {
   return e;
 }
 
-Vec3 interpolate_at(const PolygonMesh& p, Vec3 MeshVertex::*field, Vec3 bary) {
-  Vec3 w;
-  const Element& el = p.elements[locate_leaf(p, bary, &w)];
-  return p.vertices[el.v[0]].*field * w.x + p.vertices[el.v[1]].*field * w.y +
-         p.vertices[el.v[2]].*field * w.z;
-}
-
 }  // namespace rad

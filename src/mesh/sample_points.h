@@ -17,8 +17,13 @@ std::vector<Vec3> regular_sample_barycentrics(int m);
 /// point's barycentrics within that leaf. Follows the 1->4 split order of split_element.
 uint32_t locate_leaf(const PolygonMesh& p, Vec3 bary, Vec3* leaf_bary);
 
-/// A per-vertex quantity of `p` (the member `field` of its vertices) interpolated at polygon
-/// barycentrics `bary` from the vertices of the leaf element holding it.
-Vec3 interpolate_at(const PolygonMesh& p, Vec3 MeshVertex::*field, Vec3 bary);
+/// A per-vertex quantity of `p` (value: of a vertex index) interpolated at polygon barycentrics
+/// `bary` from the vertices of the leaf element holding it.
+template <typename Value>
+Vec3 interpolate_at(const PolygonMesh& p, Value&& value, Vec3 bary) {
+  Vec3 w;
+  const Element& el = p.elements[locate_leaf(p, bary, &w)];
+  return value(el.v[0]) * w.x + value(el.v[1]) * w.y + value(el.v[2]) * w.z;
+}
 
 }  // namespace rad

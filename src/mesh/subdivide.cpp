@@ -12,7 +12,7 @@ int split_element(PolygonMesh& p, uint32_t e, NewMidpoint created[3]) {
   auto mid = [&](uint32_t a, uint32_t b) {
     auto [slot, inserted] = p.midpoints.try_emplace(edge_key(a, b));
     if (inserted) {
-      *slot = p.add_vertex((p.vertices[a].position + p.vertices[b].position) * 0.5f);
+      *slot = p.add_vertex((p.positions[a] + p.positions[b]) * 0.5f);
       created[n++] = {*slot, a, b};
     }
     return *slot;
@@ -30,8 +30,7 @@ int split_element(PolygonMesh& p, uint32_t e, NewMidpoint created[3]) {
 
 float longest_edge(const PolygonMesh& p, uint32_t e) {
   const Element& el = p.elements[e];
-  const Vec3 &a = p.vertices[el.v[0]].position, &b = p.vertices[el.v[1]].position,
-             &c = p.vertices[el.v[2]].position;
+  const Vec3 &a = p.positions[el.v[0]], &b = p.positions[el.v[1]], &c = p.positions[el.v[2]];
   return glm::sqrt(
       glm::max(glm::dot(b - a, b - a), glm::max(glm::dot(c - b, c - b), glm::dot(a - c, a - c))));
 }

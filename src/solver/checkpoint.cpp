@@ -20,7 +20,9 @@ namespace {
 // Layout: magic, format, fingerprint, payload size, payload checksum, payload. Native byte
 // order and float layout: a checkpoint resumes on the machine kind that wrote it.
 constexpr char kMagic[8] = {'R', 'A', 'D', 'C', 'K', 'P', 'T', '\n'};
-constexpr uint32_t kFormat = 3;  // 2: vertices shared by copy; 3: kept shadow-ray answers counted
+// 2: vertices shared by copy; 3: kept shadow-ray answers counted; 4: vertex states apart from
+// the positions
+constexpr uint32_t kFormat = 4;
 constexpr size_t kHeader = sizeof kMagic + sizeof(uint32_t) + 3 * sizeof(uint64_t);
 
 struct HistoryRecord {
@@ -59,7 +61,7 @@ void write_checkpoint(const std::string& path, const SolverState& s, uint64_t fi
   ByteWriter w;
   w.pod(uint64_t(s.mesh.polygons.size()));
   for (size_t p = 0; p < s.mesh.polygons.size(); ++p)
-    write_polygon(w, s.mesh.polygons[p], s.shared.copies[p]);
+    write_polygon(w, s.mesh.polygons[p], s.vertex_states[p], s.shared.copies[p]);
   w.vec(s.materials);
   w.vec(s.unshot_energy);
   w.pod(s.emitted_energy), w.pod(s.absorbed_energy), w.pod(s.shots), w.pod(s.stats);
@@ -118,8 +120,9 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   const size_t np = s.mesh.polygons.size();
   Mesh mesh;
   mesh.polygons.resize(np);
+  std::vector<std::vector<VertexState>> states(np);
   std::vector<std::vector<VertexCopy>> copies(np);
-  for (size_t p = 0; p < np; ++p) read_polygon(r, mesh.polygons[p], copies[p], np);
+  for (size_t p = 0; p < np; ++p) read_polygon(r, mesh.polygons[p], states[p], copies[p], np);
   // A copy's source gathers: it is a vertex, and no copy itself (a chain would have the shot
   // read a gain while another thread writes it).
   SharedVertices shared;
@@ -157,6 +160,7 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   std::vector<uint32_t> initial(np);
   for (size_t p = 0; p < np; ++p) initial[p] = uint32_t(s.mesh.polygons[p].vertex_count());
   s.mesh = std::move(mesh);
+  s.vertex_states = std::move(states);
   s.shared.copies = std::move(shared.copies);
   find_edge_midpoints(s, initial);
   s.materials = std::move(materials);

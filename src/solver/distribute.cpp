@@ -77,7 +77,7 @@ std::vector<RankReport> collect(SolverState& s) {
     for (size_t p = 0; p < s.mesh.polygons.size(); ++p) {
       if (!s.owns(p)) continue;
       w.pod(uint32_t(p));
-      write_polygon(w, s.mesh.polygons[p], s.shared.copies[p]);
+      write_polygon(w, s.mesh.polygons[p], s.vertex_states[p], s.shared.copies[p]);
       w.pod(s.unshot_energy[p]);
     }
   }
@@ -93,7 +93,8 @@ std::vector<RankReport> collect(SolverState& s) {
       const auto p = in.pod<uint32_t>();
       if (p >= s.mesh.polygons.size() || s.cluster_owner[s.clusters.cluster_of[p]] != uint32_t(r))
         in.fail(fmt::format("polygon {} is not the rank's", p));
-      read_polygon(in, s.mesh.polygons[p], s.shared.copies[p], s.mesh.polygons.size());
+      read_polygon(in, s.mesh.polygons[p], s.vertex_states[p], s.shared.copies[p],
+                   s.mesh.polygons.size());
       s.unshot_energy[p] = in.pod<double>();
       ++received[size_t(r)];
     }

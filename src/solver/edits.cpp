@@ -25,10 +25,9 @@ void set_material(SolverState& s, int32_t object, const Material& m, const Visib
   const Vec3 d_e = m.emission - old.emission, d_rho = m.reflectance - old.reflectance;
   s.materials[size_t(object)] = m;
   for (uint32_t t = o.first_triangle; t < o.first_triangle + o.triangle_count; ++t) {
-    PolygonMesh& p = s.mesh.polygons[t];
-    for (MeshVertex& v : p.vertices) v.unshot += d_e + d_rho * v.irradiance;
+    for (VertexState& v : s.vertex_states[t]) v.unshot += d_e + d_rho * v.irradiance;
     s.emitted_energy += double(h.triangles.area[t]) * double(mean_component(d_e));
-    s.unshot_energy[t] = polygon_unshot_energy(p);
+    s.unshot_energy[t] = polygon_unshot_energy(s, t);
   }
   // Convergence follows the new emission, as a fresh solve's would, unless the edit left next
   // to none: then the light there was is what must be shot back out.
@@ -40,13 +39,14 @@ void set_material(SolverState& s, int32_t object, const Material& m, const Visib
     which.push_back(t);
   refine_after_edit(s, d_rho, vis, which);
   for (uint32_t t = o.first_triangle; t < o.first_triangle + o.triangle_count; ++t) {
-    s.unshot_energy[t] = polygon_unshot_energy(s.mesh.polygons[t]);
+    s.unshot_energy[t] = polygon_unshot_energy(s, t);
   }
   update_unshot_totals(s);
 }
 
 size_t force_subdivide(SolverState& s, int32_t polygon, const VisibilityBackend& vis) {
   PolygonMesh& m = s.mesh.polygons[size_t(polygon)];
+  std::vector<VertexState>& vs = s.vertex_states[size_t(polygon)];
   std::vector<uint32_t> leaves;
   for_each_leaf(m, [&](uint32_t e) { leaves.push_back(e); });
   std::vector<NewMidpoint> created;
@@ -57,20 +57,20 @@ size_t force_subdivide(SolverState& s, int32_t polygon, const VisibilityBackend&
     created.insert(created.end(), c, c + n);
     ++s.stats.subdivisions;
   }
+  vs.resize(m.vertex_count());
   const GatherSettings settings = gather_settings(s);
   parallel_gather(created.size(), 1, s.stats, [&](size_t begin, size_t end, GatherScratch& sc) {
     for (size_t i = begin; i != end; ++i) {
       const NewMidpoint& c = created[i];
-      MeshVertex& mid = m.vertices[c.vertex];
-      mid.irradiance =
-          regather_shots(s, mid.position, uint32_t(polygon), false, vis, settings, sc, &mid.major);
-      mid.unshot =
-          (m.vertices[c.a].unshot + m.vertices[c.b].unshot) * 0.5f;  // transient: interpolated
+      VertexState& mid = vs[c.vertex];
+      mid.irradiance = regather_shots(s, m.positions[c.vertex], uint32_t(polygon), false, vis,
+                                      settings, sc, &mid.major);
+      mid.unshot = (vs[c.a].unshot + vs[c.b].unshot) * 0.5f;  // transient: interpolated
       mid.shot = Vec3(0.0f);
     }
   });
   s.stats.exact_midpoints += created.size();
-  s.unshot_energy[size_t(polygon)] = polygon_unshot_energy(m);
+  s.unshot_energy[size_t(polygon)] = polygon_unshot_energy(s, size_t(polygon));
   update_unshot_totals(s);
   return created.size();
 }

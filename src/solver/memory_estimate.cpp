@@ -13,7 +13,7 @@ namespace {
 // Per item, with std::vector's doubling slack (half a capacity on average) and the node of an
 // unordered_map entry (key, value, next pointer, allocator header, bucket).
 constexpr double kSlack = 1.5;
-constexpr double kVertexBytes = sizeof(MeshVertex) * kSlack;
+constexpr double kVertexBytes = (sizeof(Vec3) + sizeof(VertexState)) * kSlack;
 constexpr double kElementBytes = sizeof(Element) * kSlack;
 constexpr double kMidpointBytes = 48.0;
 }  // namespace

@@ -26,11 +26,12 @@ struct EdgeMidpoint {
   int64_t exact;
 };
 
-// Whether element e of polygon m is to be split: its vertices' radiosities differ by more than
-// `limit` and it is still at least `min_split_size`. Which of its edges differ: in *d (01, 12, 20).
-bool needs_split(const PolygonMesh& m, const Material& mat, uint32_t e, float limit,
-                 float min_split_size, std::array<bool, 3>* d) {
-  auto B = [&](uint32_t v) { return mat.emission + mat.reflectance * m.vertices[v].irradiance; };
+// Whether element e of polygon m (vertex states vs) is to be split: its vertices' radiosities
+// differ by more than `limit` and it is still at least `min_split_size`. Which of its edges
+// differ: in *d (01, 12, 20).
+bool needs_split(const PolygonMesh& m, const std::vector<VertexState>& vs, const Material& mat,
+                 uint32_t e, float limit, float min_split_size, std::array<bool, 3>* d) {
+  auto B = [&](uint32_t v) { return mat.emission + mat.reflectance * vs[v].irradiance; };
   const Element& el = m.elements[e];
   const Vec3 b0 = B(el.v[0]), b1 = B(el.v[1]), b2 = B(el.v[2]);
   *d = {differs(b0, b1, limit), differs(b1, b2, limit), differs(b2, b0, limit)};
@@ -41,12 +42,14 @@ bool needs_split(const PolygonMesh& m, const Material& mat, uint32_t e, float li
 
 bool needs_refinement(const SolverState& s, uint32_t p) {
   const PolygonMesh& m = s.mesh.polygons[p];
+  const std::vector<VertexState>& vs = s.vertex_states[p];
   const Material& mat = s.material_of(p);
   const float limit = s.options.subdivision_threshold * s.radiosity_scale;
   bool any = false;
   std::array<bool, 3> d;
-  for_each_leaf(
-      m, [&](uint32_t e) { any = any || needs_split(m, mat, e, limit, 2.0f * s.min_size, &d); });
+  for_each_leaf(m, [&](uint32_t e) {
+    any = any || needs_split(m, vs, mat, e, limit, 2.0f * s.min_size, &d);
+  });
   return any;
 }
 
@@ -109,28 +112,30 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
         const uint32_t p = polygons[i];
         const bool sharing = shares_vertices(s.clusters, p);
         PolygonMesh& m = s.mesh.polygons[p];
+        std::vector<VertexState>& vs = s.vertex_states[p];
         const Material& mat = s.material_of(p);
         auto consider = [&](uint32_t e) {
           const uint32_t v[3] = {m.elements[e].v[0], m.elements[e].v[1], m.elements[e].v[2]};
           std::array<bool, 3> d;
-          if (!needs_split(m, mat, e, limit, min_split_size, &d)) return;
+          if (!needs_split(m, vs, mat, e, limit, min_split_size, &d)) return;
           const bool d01 = d[0], d12 = d[1], d20 = d[2];
           const bool exact_edge[3][3] = {{false, d01, d20}, {d01, false, d12}, {d20, d12, false}};
           auto index_of = [&](uint32_t x) { return x == v[0] ? 0 : x == v[1] ? 1 : 2; };
           NewMidpoint created[3];
           const int n = split_element(m, e, created);
+          vs.resize(m.vertex_count());
           ++splits[i];
           for (int k = 0; k < n; ++k) {
             const NewMidpoint& c = created[k];
             const bool computed = all_exact || exact_edge[index_of(c.a)][index_of(c.b)];
-            if (sharing && on_triangle_edge(tris.corners[p], m.vertices[c.vertex].position)) {
+            if (sharing && on_triangle_edge(tris.corners[p], m.positions[c.vertex])) {
               on_edges[i].push_back({c.vertex, computed ? int64_t(exact[i].size()) : -1});
             }
             if (computed) {
               exact[i].push_back({p, c.vertex, c.a, c.b});
             } else {
-              const MeshVertex &a = m.vertices[c.a], &b = m.vertices[c.b];
-              MeshVertex& mid = m.vertices[c.vertex];
+              const VertexState &a = vs[c.a], &b = vs[c.b];
+              VertexState& mid = vs[c.vertex];
               mid.irradiance = (a.irradiance + b.irradiance) * 0.5f;
               mid.unshot = (a.unshot + b.unshot) * 0.5f;
               mid.shot = (a.shot + b.shot) * 0.5f;
@@ -158,7 +163,7 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
       const uint32_t p = polygons[i];
       for (const EdgeMidpoint& e : on_edges[i]) {
         const PolygonMesh& m = s.mesh.polygons[p];
-        const auto place = shared_place(s.clusters, p, m.vertices[e.vertex].position);
+        const auto place = shared_place(s.clusters, p, m.positions[e.vertex]);
         const SharedVertices::Gatherer self{p, e.vertex};
         const auto [it, made] = shared.edge_midpoints.try_emplace(*place, self);
         if (made) continue;
@@ -186,8 +191,8 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
     tbb::parallel_for(size_t(0), flat.size(), [&](size_t i) {
       const ExactVertex& x = flat[i];
       if (x.from_polygon < 0) return;
-      const MeshVertex& from = s.mesh.polygons[size_t(x.from_polygon)].vertices[x.from_vertex];
-      MeshVertex& to = s.mesh.polygons[x.polygon].vertices[x.vertex];
+      const VertexState& from = s.vertex_states[size_t(x.from_polygon)][x.from_vertex];
+      VertexState& to = s.vertex_states[x.polygon][x.vertex];
       to.irradiance = from.irradiance, to.unshot = from.unshot;
       to.shot = from.shot, to.major = from.major;
     });
@@ -211,15 +216,15 @@ void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBa
   const Triangles& tris = s.hierarchy->triangles;
   const GatherSettings settings = gather_settings(s);
   refine(s, polygons, true, [&](const ExactVertex& x, GatherScratch& sc) {
-    PolygonMesh& m = s.mesh.polygons[x.polygon];
+    const Vec3 at = s.mesh.polygons[x.polygon].positions[x.vertex];
+    std::vector<VertexState>& vs = s.vertex_states[x.polygon];
     const Vec3 rho = s.material_of(x.polygon).reflectance;
-    const MeshVertex &a = m.vertices[x.a], &b = m.vertices[x.b];
-    MeshVertex& mid = m.vertices[x.vertex];
-    const Vec3 dh =
-        gather_from_source(mid.position, tris.normal[x.polygon], tris.centroid(x.polygon), src, vis,
-                           receiver_settings(settings, s, x.polygon), sc);
+    const VertexState &a = vs[x.a], &b = vs[x.b];
+    VertexState& mid = vs[x.vertex];
+    const Vec3 dh = gather_from_source(at, tris.normal[x.polygon], tris.centroid(x.polygon), src,
+                                       vis, receiver_settings(settings, s, x.polygon), sc);
     Vec3 major_h(0.0f);
-    regather_shots(s, mid.position, x.polygon, true, vis, settings, sc, &major_h);
+    regather_shots(s, at, x.polygon, true, vis, settings, sc, &major_h);
     // Earlier minor shots: interpolated from the edge's ends (SPEC §5).
     Vec3 minor_a = a.irradiance - a.shot - a.major;
     Vec3 minor_b = b.irradiance - b.shot - b.major;
@@ -246,12 +251,12 @@ void refine_after_edit(SolverState& s, const Vec3& d_rho, const VisibilityBacken
   for (size_t i = 0; i < polygons.size(); ++i)
     if (needs[i]) to_split.push_back(polygons[i]);
   refine(s, to_split, false, [&](const ExactVertex& x, GatherScratch& sc) {
-    PolygonMesh& m = s.mesh.polygons[x.polygon];
-    const MeshVertex &a = m.vertices[x.a], &b = m.vertices[x.b];
-    MeshVertex& mid = m.vertices[x.vertex];
+    std::vector<VertexState>& vs = s.vertex_states[x.polygon];
+    const VertexState &a = vs[x.a], &b = vs[x.b];
+    VertexState& mid = vs[x.vertex];
     // Every earlier shot gathered again: H exact.
-    mid.irradiance =
-        regather_shots(s, mid.position, x.polygon, false, vis, settings, sc, &mid.major);
+    mid.irradiance = regather_shots(s, s.mesh.polygons[x.polygon].positions[x.vertex], x.polygon,
+                                    false, vis, settings, sc, &mid.major);
     // Unshot: the edit's part d_rho * H exact, the rest interpolated (transient).
     mid.unshot = (a.unshot - d_rho * a.irradiance + b.unshot - d_rho * b.irradiance) * 0.5f +
                  d_rho * mid.irradiance;

@@ -83,7 +83,8 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
     for (size_t i = begin; i != end; ++i) {
       const VertexRange& w = work[i];
       const uint32_t p = w.polygon;
-      PolygonMesh& mesh = s.mesh.polygons[p];
+      const PolygonMesh& mesh = s.mesh.polygons[p];
+      std::vector<VertexState>& vs = s.vertex_states[p];
       const Vec3 n = tris.normal[p], centroid = tris.centroid(p);
       const Vec3 rho = s.material_of(p).reflectance;
       const GatherSettings own = receiver_settings(settings, s, p);
@@ -95,10 +96,10 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
         if (next != copies.end() && next->vertex == v) {
           if (received[next++->from_polygon]) continue;
         }
-        MeshVertex& x = mesh.vertices[v];
+        VertexState& x = vs[v];
         const VertexRays rays = kept ? vertex_rays(*kept, w.receiver, v) : VertexRays{};
-        const Vec3 dh =
-            gather_from_source(x.position, n, centroid, src, vis, own, sc, kept ? &rays : nullptr);
+        const Vec3 dh = gather_from_source(mesh.positions[v], n, centroid, src, vis, own, sc,
+                                           kept ? &rays : nullptr);
         x.irradiance += dh;
         x.unshot += rho * dh;
         x.shot = dh;
@@ -109,12 +110,12 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
   // The shared vertices take the gain of the one that gathered for them (same Pure: same rho).
   tbb::parallel_for(size_t(0), receivers.size(), [&](size_t i) {
     const uint32_t p = receivers[i];
-    PolygonMesh& mesh = s.mesh.polygons[p];
+    std::vector<VertexState>& vs = s.vertex_states[p];
     const Vec3 rho = s.material_of(p).reflectance;
     for (const VertexCopy& c : shared.copies[p]) {
       if (!received[c.from_polygon]) continue;
-      const Vec3 dh = s.mesh.polygons[c.from_polygon].vertices[c.from_vertex].shot;
-      MeshVertex& x = mesh.vertices[c.vertex];
+      const Vec3 dh = s.vertex_states[c.from_polygon][c.from_vertex].shot;
+      VertexState& x = vs[c.vertex];
       x.irradiance += dh;
       x.unshot += rho * dh;
       x.shot = dh;

@@ -104,8 +104,11 @@ ShotSource make_shot_source(const SolverState& s, int32_t c) {
     const float piece = tris.area[t] / float(q * q);
     const auto& c3 = tris.corners[t];
     for (const Vec3& w : s.barycentric_grids[size_t(q)]) {
-      fine.push_back({c3[0] * w.x + c3[1] * w.y + c3[2] * w.z, tris.normal[t],
-                      interpolate_at(s.mesh.polygons[t], &MeshVertex::unshot, w), piece});
+      fine.push_back(
+          {c3[0] * w.x + c3[1] * w.y + c3[2] * w.z, tris.normal[t],
+           interpolate_at(
+               s.mesh.polygons[t], [&](uint32_t v) { return s.vertex_states[t][v].unshot; }, w),
+           piece});
     }
   }
   const uint32_t strata = std::min<uint32_t>(n, uint32_t(fine.size()));

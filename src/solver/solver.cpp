@@ -43,7 +43,7 @@ ShotSource freeze_source(SolverState& s, size_t c, double energy) {
     over = s.material_of(k.polygons[k.first[c]]).reflectance * ambient_estimate(s);
   auto set_unshot = [&](const Vec3& add, bool assign) {
     for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) {
-      for (MeshVertex& v : s.mesh.polygons[k.polygons[j]].vertices) {
+      for (VertexState& v : s.vertex_states[k.polygons[j]]) {
         v.unshot = assign ? add : v.unshot + add;
       }
     }
@@ -53,8 +53,7 @@ ShotSource freeze_source(SolverState& s, size_t c, double energy) {
   set_unshot(-over, true);
   std::vector<double> left;
   for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) {
-    left.push_back(s.options.overshoot ? polygon_unshot_energy(s.mesh.polygons[k.polygons[j]])
-                                       : 0.0);
+    left.push_back(s.options.overshoot ? polygon_unshot_energy(s, k.polygons[j]) : 0.0);
   }
   set_unshot_energies(s, {k.polygons.data() + k.first[c], left.size()}, left);
 
@@ -90,12 +89,12 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   auto count = [&](size_t i) {
     const uint32_t p = receivers[i];
     const PolygonMesh& m = s.mesh.polygons[p];
+    const std::vector<VertexState>& vs = s.vertex_states[p];
     const Vec3 absorptance = Vec3(1.0f) - s.material_of(p).reflectance;
     double a = 0.0, u = 0.0;  // one walk for both (u as polygon_unshot_energy sums it)
     for_each_leaf(m, [&](uint32_t e) {
       const Element& el = m.elements[e];
-      const MeshVertex &v0 = m.vertices[el.v[0]], &v1 = m.vertices[el.v[1]],
-                       &v2 = m.vertices[el.v[2]];
+      const VertexState &v0 = vs[el.v[0]], &v1 = vs[el.v[1]], &v2 = vs[el.v[2]];
       a += double(el.area) * mean_component(absorptance * (v0.shot + v1.shot + v2.shot)) / 3.0;
       u += double(el.area) * double(mean_component(v0.unshot + v1.unshot + v2.unshot)) / 3.0;
     });

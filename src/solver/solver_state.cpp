@@ -32,10 +32,11 @@ SolverStats& SolverStats::operator+=(const SolverStats& o) {
   return *this;
 }
 
-double polygon_unshot_energy(const PolygonMesh& p) {
+double polygon_unshot_energy(const SolverState& s, size_t p) {
+  const std::vector<VertexState>& vs = s.vertex_states[p];
   double e = 0.0;
   for_each_leaf_vertex_sum(
-      p, [](const MeshVertex& v) { return v.unshot; },
+      s.mesh.polygons[p], [&](uint32_t v) { return vs[v].unshot; },
       [&](float area, Vec3 sum) { e += double(area) * double(mean_component(sum)) / 3.0; });
   return e;
 }
@@ -181,7 +182,7 @@ void find_edge_midpoints(SolverState& s, std::span<const uint32_t> initial_verti
   for (uint32_t p = 0; p < s.mesh.polygons.size(); ++p) {
     const PolygonMesh& m = s.mesh.polygons[p];
     for (uint32_t v = initial_vertices[p]; v < m.vertex_count(); ++v) {
-      const Vec3& x = m.vertices[v].position;
+      const Vec3& x = m.positions[v];
       const auto place = shared_place(s.clusters, p, x);
       if (!place || !on_triangle_edge(tris.corners[p], x) || sh.is_copy(p, v)) continue;
       sh.edge_midpoints.try_emplace(*place, SharedVertices::Gatherer{p, v});  // lowest first
@@ -200,7 +201,7 @@ SharedVertices find_shared_vertices(const Mesh& mesh, const Clusters& clusters) 
   std::vector<Key> keys;
   for (size_t p = 0; p < np; ++p) {
     for (uint32_t v = 0; v < mesh.polygons[p].vertex_count(); ++v) {
-      if (const auto k = shared_place(clusters, p, mesh.polygons[p].vertices[v].position))
+      if (const auto k = shared_place(clusters, p, mesh.polygons[p].positions[v]))
         keys.push_back({*k, uint32_t(p), v});
     }
   }
@@ -280,11 +281,11 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   for (const SceneObject& o : h.objects) s.materials.push_back(o.material);
   s.unshot_energy.assign(h.triangles.size(), 0.0);
   double total_area = 0.0;
+  s.vertex_states.resize(h.triangles.size());
   for (size_t t = 0; t < h.triangles.size(); ++t) {
     const Vec3 e = s.material_of(t).emission;
-    PolygonMesh& p = s.mesh.polygons[t];
-    for (MeshVertex& v : p.vertices) v.unshot = e;
-    s.unshot_energy[t] = polygon_unshot_energy(p);
+    s.vertex_states[t].assign(s.mesh.polygons[t].vertex_count(), VertexState{.unshot = e});
+    s.unshot_energy[t] = polygon_unshot_energy(s, t);
     s.emitted_energy += s.unshot_energy[t];
     total_area += h.triangles.area[t];
   }
@@ -336,10 +337,10 @@ Vec3 ambient_radiosity(const SolverState& s) {
   if (s.total_area <= 0.0) return Vec3(0.0f);
   DVec3 unshot(0.0);
   for (size_t t = 0; t < h.triangles.size(); ++t) {
-    const PolygonMesh& p = s.mesh.polygons[t];
+    const std::vector<VertexState>& vs = s.vertex_states[t];
     DVec3 u(0.0);
     for_each_leaf_vertex_sum(
-        p, [](const MeshVertex& v) { return v.unshot; },
+        s.mesh.polygons[t], [&](uint32_t v) { return vs[v].unshot; },
         [&](float area, Vec3 sum) { u += DVec3(sum) * (double(area) / 3.0); });
     unshot += u;
   }

@@ -35,6 +35,16 @@ struct SolverStats {
   SolverStats& operator+=(const SolverStats& o);
 };
 
+/// What the solver keeps at a vertex of the radiosity mesh (whose position the mesh keeps, at
+/// the same index). One record per vertex, not one array per quantity: a polygon that never
+/// splits costs one allocation, not four.
+struct VertexState {
+  Vec3 irradiance{0.0f};  // H: radiosity gathered from all shots so far; B = E + rho * H
+  Vec3 unshot{0.0f};      // radiosity received but not yet shot
+  Vec3 shot{0.0f};        // H gathered during the current shot only (for subdivision)
+  Vec3 major{0.0f};       // part of H gathered from the solver's major shots (see solver)
+};
+
 /// One line of the convergence history.
 struct ShotRecord {
   int64_t shot;            // 1-based
@@ -92,6 +102,8 @@ struct SolverState {
   const Hierarchy* hierarchy = nullptr;
   SolverOptions options;
   Mesh mesh;
+  /// Per polygon, per vertex of its mesh (same indices; as long as its vertex table).
+  std::vector<std::vector<VertexState>> vertex_states;
   /// Materials per hierarchy object (copied so they can be edited between shots).
   std::vector<Material> materials;
   /// The shooting patches (SPEC §10), of at most (max_sample_grid x max_size)^2 each.
@@ -153,7 +165,7 @@ struct SolverState {
   /// Radiosity B = E + rho * H of vertex v of polygon p.
   Vec3 radiosity(size_t p, uint32_t v) const {
     const Material& m = material_of(p);
-    return m.emission + m.reflectance * mesh.polygons[p].vertices[v].irradiance;
+    return m.emission + m.reflectance * vertex_states[p][v].irradiance;
   }
   double unshot_fraction() const {
     return reference_energy > 0.0 ? unshot_abs_total / reference_energy : 0.0;
@@ -210,7 +222,7 @@ void set_unshot_energies(SolverState& s, std::span<const uint32_t> polygons,
 void share_unshot_totals(SolverState& s);
 
 /// Unshot energy of polygon p integrated over its leaf elements (mean over channels).
-double polygon_unshot_energy(const PolygonMesh& p);
+double polygon_unshot_energy(const SolverState& s, size_t p);
 
 /// The ambient term from the per-polygon unshot energies (mean over channels, signed): cheap
 /// enough to evaluate every shot.

@@ -30,7 +30,7 @@ struct ShotHeader {
   Aabb box;
   uint32_t unused = 0;
 };
-static_assert(sizeof(ShotHeader) == 120 && sizeof(Element) == 20 && sizeof(MeshVertex) == 60);
+static_assert(sizeof(ShotHeader) == 120 && sizeof(Element) == 20 && sizeof(VertexState) == 48);
 
 }  // namespace
 
@@ -76,8 +76,10 @@ ShotSource read_shot(ByteReader& r, size_t clusters) {
   return s;
 }
 
-void write_polygon(ByteWriter& w, const PolygonMesh& p, const std::vector<VertexCopy>& copies) {
-  w.vec(p.vertices);
+void write_polygon(ByteWriter& w, const PolygonMesh& p, const std::vector<VertexState>& states,
+                   const std::vector<VertexCopy>& copies) {
+  w.vec(p.positions);
+  w.vec(states);
   w.vec(p.elements);
   // Sorted, so equal states write equal files (the map's order depends on its history).
   std::vector<std::pair<uint64_t, uint32_t>> mids(p.midpoints.entries().begin(),
@@ -91,8 +93,10 @@ void write_polygon(ByteWriter& w, const PolygonMesh& p, const std::vector<Vertex
   w.vec(copies);
 }
 
-void read_polygon(ByteReader& r, PolygonMesh& p, std::vector<VertexCopy>& copies, size_t polygons) {
-  r.vec(p.vertices);
+void read_polygon(ByteReader& r, PolygonMesh& p, std::vector<VertexState>& states,
+                  std::vector<VertexCopy>& copies, size_t polygons) {
+  r.vec(p.positions);
+  r.vec(states);
   r.vec(p.elements);
   std::vector<uint64_t> keys;
   std::vector<uint32_t> values;
@@ -100,8 +104,9 @@ void read_polygon(ByteReader& r, PolygonMesh& p, std::vector<VertexCopy>& copies
   r.vec(values);
   if (keys.size() != values.size()) r.fail("unpaired midpoints");
   // The indices the solver follows without checking must be in range.
-  const size_t nv = p.vertices.size(), ne = p.elements.size();
+  const size_t nv = p.positions.size(), ne = p.elements.size();
   if (nv < 3 || ne < 1) r.fail("a polygon without its triangle");
+  if (states.size() != nv) r.fail("vertex states not one per vertex");
   for (size_t e = 0; e < ne; ++e) {
     const Element& el = p.elements[e];
     if (el.v[0] >= nv || el.v[1] >= nv || el.v[2] >= nv) r.fail("an element of no vertex");

@@ -78,10 +78,12 @@ void write_shot(ByteWriter& w, const ShotSource& s);
 /// Throws rad::Error when the record is inconsistent; `clusters` bounds its cluster index.
 ShotSource read_shot(ByteReader& r, size_t clusters);
 
-/// A polygon's mesh and its vertices that copy another's gain (solver_state.h).
-void write_polygon(ByteWriter& w, const PolygonMesh& p, const std::vector<VertexCopy>& copies);
+/// A polygon's mesh, its vertex states and its vertices that copy another's gain (solver_state.h).
+void write_polygon(ByteWriter& w, const PolygonMesh& p, const std::vector<VertexState>& states,
+                   const std::vector<VertexCopy>& copies);
 /// Throws rad::Error when an index of the record is out of range (a copy's vertex in the polygon
 /// it copies from is the caller's to check, once every polygon is read).
-void read_polygon(ByteReader& r, PolygonMesh& p, std::vector<VertexCopy>& copies, size_t polygons);
+void read_polygon(ByteReader& r, PolygonMesh& p, std::vector<VertexState>& states,
+                  std::vector<VertexCopy>& copies, size_t polygons);
 
 }  // namespace rad

@@ -9,11 +9,9 @@ namespace rad {
 namespace {
 
 std::vector<Vec3> positions_with_centroids(const PolygonMesh& p, const PolygonFaces& f) {
-  std::vector<Vec3> pos;
-  for (const MeshVertex& v : p.vertices) pos.push_back(v.position);
+  std::vector<Vec3> pos = p.positions;
   for (const auto& c : f.centroids)
-    pos.push_back(
-        (p.vertices[c[0]].position + p.vertices[c[1]].position + p.vertices[c[2]].position) / 3.0f);
+    pos.push_back((p.positions[c[0]] + p.positions[c[1]] + p.positions[c[2]]) / 3.0f);
   return pos;
 }
 
@@ -64,15 +62,15 @@ TEST(OutputFaces, ANeighboursMidpointsOnTheSharedEdgeAreSeamVertices) {
   split_element(a, uint32_t(a.elements[0].first_child + 3), created);  // the middle child
   split_element(a, uint32_t(a.elements[0].first_child + 1), created);  // at corner (1,0)
   SeamVertices seams;
-  for (uint32_t v = 0; v < a.vertex_count(); ++v) seams.add(a.vertices[v].position, {0, v});
-  for (uint32_t v = 0; v < b.vertex_count(); ++v) seams.add(b.vertices[v].position, {1, v});
+  for (uint32_t v = 0; v < a.vertex_count(); ++v) seams.add(a.positions[v], {0, v});
+  for (uint32_t v = 0; v < b.vertex_count(); ++v) seams.add(b.positions[v], {1, v});
   const PolygonFaces f = triangulate_leaves(b, 1, &seams);
   // On the edge: its midpoint (0.5, 0.5) and the quarter point (0.75, 0.25), both a's.
   ASSERT_EQ(f.seam.size(), 2u);
   std::vector<Vec3> pos = positions_with_centroids(b, f);
   for (const VertexRef& r : f.seam) {
     EXPECT_EQ(r.polygon, 0u);
-    pos.push_back(a.vertices[r.vertex].position);
+    pos.push_back(a.positions[r.vertex]);
   }
   double area = 0.0;
   for (size_t t = 0; t < f.triangles.size(); t += 3) {

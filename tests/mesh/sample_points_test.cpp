@@ -47,10 +47,8 @@ TEST(SamplePoints, LocateLeafFindsTheLeafHoldingThePoint) {
     EXPECT_GE(lw.y, -1e-4f);
     EXPECT_GE(lw.z, -1e-4f);
     const uint32_t* v = p.elements[e].v;
-    const Vec3 q = p.vertices[v[0]].position * lw.x + p.vertices[v[1]].position * lw.y +
-                   p.vertices[v[2]].position * lw.z;
-    const Vec3 expected =
-        p.vertices[0].position * w.x + p.vertices[1].position * w.y + p.vertices[2].position * w.z;
+    const Vec3 q = p.positions[v[0]] * lw.x + p.positions[v[1]] * lw.y + p.positions[v[2]] * lw.z;
+    const Vec3 expected = p.positions[0] * w.x + p.positions[1] * w.y + p.positions[2] * w.z;
     EXPECT_NEAR(glm::length(q - expected), 0.0f, 1e-4f);
   }
 }
@@ -58,11 +56,12 @@ TEST(SamplePoints, LocateLeafFindsTheLeafHoldingThePoint) {
 TEST(SamplePoints, InterpolationReproducesALinearField) {
   PolygonMesh p = testing::one_polygon();
   testing::split_randomly(p, 20, 11);
-  for (MeshVertex& v : p.vertices) v.unshot = Vec3(2.0f * v.position.x + 1.0f, v.position.y, 0.5f);
+  std::vector<Vec3> field;
+  for (const Vec3& q : p.positions) field.push_back(Vec3(2.0f * q.x + 1.0f, q.y, 0.5f));
   const Vec3 w(0.2f, 0.3f, 0.5f);
-  const Vec3 x =
-      p.vertices[0].position * w.x + p.vertices[1].position * w.y + p.vertices[2].position * w.z;
-  const Vec3 got = interpolate_at(p, &MeshVertex::unshot, w);
+  const Vec3 x = p.positions[0] * w.x + p.positions[1] * w.y + p.positions[2] * w.z;
+  const Vec3 got = interpolate_at(
+      p, [&](uint32_t v) { return field[v]; }, w);
   EXPECT_NEAR(got.x, 2.0f * x.x + 1.0f, 1e-5f);
   EXPECT_NEAR(got.y, x.y, 1e-5f);
 }

@@ -19,8 +19,7 @@ TEST(Subdivide, SplitsIntoFourChildrenOfAQuarterAreaWithThreeNewMidpoints) {
     EXPECT_FLOAT_EQ(p.elements[c].area, 0.125f);
   }
   for (const NewMidpoint& m : created) {
-    EXPECT_EQ(p.vertices[m.vertex].position,
-              (p.vertices[m.a].position + p.vertices[m.b].position) * 0.5f);
+    EXPECT_EQ(p.positions[m.vertex], (p.positions[m.a] + p.positions[m.b]) * 0.5f);
   }
 }
 
@@ -30,8 +29,8 @@ TEST(Subdivide, ChildrenKeepTheParentOrientation) {
   split_element(p, 0, created);
   for (int c = 1; c <= 4; ++c) {
     const uint32_t* v = p.elements[c].v;
-    const Vec3 n = glm::cross(p.vertices[v[1]].position - p.vertices[v[0]].position,
-                              p.vertices[v[2]].position - p.vertices[v[0]].position);
+    const Vec3 n =
+        glm::cross(p.positions[v[1]] - p.positions[v[0]], p.positions[v[2]] - p.positions[v[0]]);
     EXPECT_GT(n.z, 0.0f) << "child " << c;
   }
 }

@@ -31,11 +31,9 @@ void for_each_vertex_of(const Solved& r, const std::string& name, F&& f) {
   for (size_t p = 0; p < r.h.triangles.size(); ++p) {
     if (r.h.objects[size_t(r.h.triangles.object[p])].name != name) continue;
     const PolygonMesh& m = r.s.mesh.polygons[p];
-    const Vec3 centroid =
-        (m.vertices[0].position + m.vertices[1].position + m.vertices[2].position) / 3.0f;
+    const Vec3 centroid = (m.positions[0] + m.positions[1] + m.positions[2]) / 3.0f;
     for (uint32_t v = 0; v < m.vertex_count(); ++v) {
-      f(m.vertices[v].position, r.s.radiosity(p, v),
-        m.vertices[v].position + (centroid - m.vertices[v].position) * 1e-4f);
+      f(m.positions[v], r.s.radiosity(p, v), m.positions[v] + (centroid - m.positions[v]) * 1e-4f);
     }
   }
 }
@@ -134,7 +132,7 @@ TEST_P(AnalyticScenes, VertexInFullUmbraGetsZero) {
     if (r->h.objects[size_t(r->h.triangles.object[p])].name != "floor") continue;
     const PolygonMesh& m = r->s.mesh.polygons[p];
     for (uint32_t v = 0; v < m.vertex_count(); ++v) {
-      const Vec3 q = m.vertices[v].position;
+      const Vec3 q = m.positions[v];
       const float b = r->s.radiosity(p, v).x;
       if (std::max(std::abs(q.x), std::abs(q.y)) < 0.75f) {
         if (v < 3) {

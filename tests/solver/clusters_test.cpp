@@ -135,8 +135,8 @@ void expect_energy_balance(int k, int shots) {
   SolverState s = make_solver_state(h, {});
   double worst = 0.0;
   for (int i = 0; i < shots; ++i) {
-    for (PolygonMesh& p : s.mesh.polygons)
-      for (MeshVertex& v : p.vertices) v.shot = Vec3(0.0f);
+    for (std::vector<VertexState>& vs : s.vertex_states)
+      for (VertexState& v : vs) v.shot = Vec3(0.0f);
     if (!step(s, *vis)) break;
     const ShotSource& src = s.shot_log.back();
     double shot_power = 0.0;
@@ -144,14 +144,13 @@ void expect_energy_balance(int k, int shots) {
       shot_power += double(src.sample.area[j]) * double(mean_component(src.sample.value(j)));
     }
     double gained = 0.0;
-    for (const PolygonMesh& p : s.mesh.polygons) {
-      for_each_leaf(p, [&](uint32_t e) {
-        const Element& el = p.elements[e];
-        gained += double(el.area) *
-                  double(mean_component(p.vertices[el.v[0]].shot + p.vertices[el.v[1]].shot +
-                                        p.vertices[el.v[2]].shot)) /
-                  3.0;
-      });
+    for (size_t q = 0; q < s.mesh.polygons.size(); ++q) {
+      const std::vector<VertexState>& vs = s.vertex_states[q];
+      for_each_leaf_vertex_sum(
+          s.mesh.polygons[q], [&](uint32_t v) { return vs[v].shot; },
+          [&](float area, Vec3 sum) {
+            gained += double(area) * double(mean_component(sum)) / 3.0;
+          });
     }
     const double err = std::abs(gained / shot_power - 1.0);
     worst = std::max(worst, err);

@@ -150,29 +150,28 @@ TEST(Edits, ForcedSubdivisionGivesNewVerticesTheirExactRadiosity) {
   const size_t before = s.mesh.polygons[size_t(floor_polygon)].vertex_count();
   const size_t added = force_subdivide(s, floor_polygon, *vis);
   const PolygonMesh& m = s.mesh.polygons[size_t(floor_polygon)];
+  const std::vector<VertexState>& vs = s.vertex_states[size_t(floor_polygon)];
   EXPECT_EQ(added, 3u);
   EXPECT_EQ(m.vertex_count(), before + 3);
   // Exact: the first new vertex holds what every logged shot gives a point there, not the
   // mean of its edge's ends.
-  const Vec3 mid = m.vertices[before].position;
+  const Vec3 mid = m.positions[before];
   float interpolated = 0;
   for (const auto& [key, v] : m.midpoints.entries()) {
     if (v == before) {
-      interpolated =
-          0.5f * (m.vertices[key >> 32].irradiance.x + m.vertices[key & 0xffffffffu].irradiance.x);
+      interpolated = 0.5f * (vs[key >> 32].irradiance.x + vs[key & 0xffffffffu].irradiance.x);
     }
   }
   GatherScratch sc;
   Vec3 expected(0.0f);
-  const Vec3 centroid =
-      (m.vertices[0].position + m.vertices[1].position + m.vertices[2].position) / 3.0f;
+  const Vec3 centroid = (m.positions[0] + m.positions[1] + m.positions[2]) / 3.0f;
   for (const ShotSource& src : s.shot_log) {
     if (!may_receive(s, size_t(floor_polygon), src)) continue;
     expected += gather_from_source(mid, h.triangles.normal[size_t(floor_polygon)], centroid, src,
                                    *vis, gather_settings(s), sc);
   }
-  EXPECT_FLOAT_EQ(m.vertices[before].irradiance.x, expected.x);
-  EXPECT_NE(m.vertices[before].irradiance.x, interpolated) << "computed, not the mean of its ends";
+  EXPECT_FLOAT_EQ(vs[before].irradiance.x, expected.x);
+  EXPECT_NE(vs[before].irradiance.x, interpolated) << "computed, not the mean of its ends";
 }
 
 }  // namespace

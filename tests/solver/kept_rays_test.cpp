@@ -46,8 +46,8 @@ Solved solve_with(const Hierarchy& h, BackendKind backend, size_t kept_bytes, in
     solve(s, *vis);
   }
   Solved out;
-  for (const PolygonMesh& p : s.mesh.polygons) {
-    for (const MeshVertex& v : p.vertices) out.irradiance.push_back(v.irradiance);
+  for (const std::vector<VertexState>& vs : s.vertex_states) {
+    for (const VertexState& v : vs) out.irradiance.push_back(v.irradiance);
   }
   out.rays = s.stats.rays.rays;
   out.kept = s.stats.kept_answers;

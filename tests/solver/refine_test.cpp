@@ -57,15 +57,15 @@ TEST(Refine, OriginalRuleComputesOnlyMidpointsOfEdgesBeyondTheLimit) {
   const float limit = o.subdivision_threshold * r->s.radiosity_scale;
   int computed = 0, interpolated = 0;
   for (const Midpoint& m : floor_midpoints(*r)) {
-    const PolygonMesh& pm = r->s.mesh.polygons[m.polygon];
+    const std::vector<VertexState>& vs = r->s.vertex_states[m.polygon];
     // Both ends of an edge existed before its midpoint, so their values decided the rule.
-    const Vec3 mean = (pm.vertices[m.a].irradiance + pm.vertices[m.b].irradiance) * 0.5f;
+    const Vec3 mean = (vs[m.a].irradiance + vs[m.b].irradiance) * 0.5f;
     const Vec3 ba = r->s.radiosity(m.polygon, m.a), bb = r->s.radiosity(m.polygon, m.b);
     if (differs(ba, bb, limit)) {
       ++computed;
     } else {
       ++interpolated;
-      EXPECT_EQ(pm.vertices[m.vertex].irradiance, mean) << "interpolated midpoint must be the mean";
+      EXPECT_EQ(vs[m.vertex].irradiance, mean) << "interpolated midpoint must be the mean";
     }
   }
   EXPECT_GT(computed, 10);
@@ -81,9 +81,9 @@ TEST(Refine, ExactRuleComputesEveryMidpoint) {
   // A computed midpoint under the peak is above the mean of its ends somewhere.
   int above = 0;
   for (const Midpoint& m : floor_midpoints(*r)) {
-    const PolygonMesh& pm = r->s.mesh.polygons[m.polygon];
-    above += pm.vertices[m.vertex].irradiance.x >
-             1.001f * 0.5f * (pm.vertices[m.a].irradiance.x + pm.vertices[m.b].irradiance.x);
+    const std::vector<VertexState>& vs = r->s.vertex_states[m.polygon];
+    above +=
+        vs[m.vertex].irradiance.x > 1.001f * 0.5f * (vs[m.a].irradiance.x + vs[m.b].irradiance.x);
   }
   EXPECT_GT(above, 0);
 }
@@ -101,9 +101,9 @@ TEST(Refine, SharedVerticesAreComputedOnce) {
       ++copies;
       midpoint_copies += c.vertex >= 3;  // not a corner: made by the refinement
       // The same state as the vertex it copies, bit for bit.
-      const MeshVertex &to = m.vertices[c.vertex],
-                       &from = r->s.mesh.polygons[c.from_polygon].vertices[c.from_vertex];
-      EXPECT_EQ(to.position, from.position);
+      const VertexState &to = r->s.vertex_states[p][c.vertex],
+                        &from = r->s.vertex_states[c.from_polygon][c.from_vertex];
+      EXPECT_EQ(m.positions[c.vertex], r->s.mesh.polygons[c.from_polygon].positions[c.from_vertex]);
       EXPECT_EQ(to.irradiance, from.irradiance);
       EXPECT_EQ(to.unshot, from.unshot);
     }
