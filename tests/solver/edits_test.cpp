@@ -124,6 +124,13 @@ TEST(Edits, ChangingAColourConvergesToAFreshSolve) {
   EXPECT_LE(edit_then_continue("left", {green, Vec3(0)}, kLamp, green, kBlack), 0.005);
 }
 
+TEST(Edits, AColourOfTheSameMeanReflectanceConvergesToAFreshSolve) {
+  // The edit's unshot radiosity is +H in one channel and -H in another: its mean over the
+  // channels is zero, yet the light it changes must still be shot.
+  const Vec3 same_mean(0.4f, 0.5f, 0.2f);  // kLeft is (0.6, 0.3, 0.2)
+  EXPECT_LE(edit_then_continue("left", {same_mean, Vec3(0)}, kLamp, same_mean, kBlack), 0.005);
+}
+
 TEST(Edits, ReflectanceFromZeroConvergesToAFreshSolve) {
   const Vec3 grey(0.7f);
   EXPECT_LE(edit_then_continue("back", {grey, Vec3(0)}, kLamp, kLeft, grey), 0.005);
