@@ -1,6 +1,7 @@
 #include "solver/solver.h"
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <chrono>
@@ -22,8 +23,37 @@ std::optional<Shooter> choose_shooter(const SolverState& s) {
   const size_t nc = energy.size();
   int32_t best = -1;
   double best_energy = 0.0;
-  for (size_t c = 0; c < nc; ++c) {
-    if (energy[c] > best_energy) best_energy = energy[c], best = int32_t(c);
+  if (s.options.overshoot) {
+    // With overshooting a cluster shoots its unshot energy plus its share of the ambient: what
+    // it would shoot now, not what it holds, says which goes first. (By what it holds, one that
+    // holds the overshoot it shot last, -rho x ambient, shoots next and nothing again, and the
+    // held overshoot of all of them grows: a furnished room ended with 42% of its energy
+    // unshot after 900 shots.)
+    const double amb = ambient_estimate(s);
+    const Triangles& tris = s.hierarchy->triangles;
+    const Clusters& k = s.clusters;
+    using Best = std::pair<double, int32_t>;  // (energy, -index): the larger wins, ties lowest
+    const Best found = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, nc, 256), Best{0.0, 1},
+        [&](const tbb::blocked_range<size_t>& r, Best b) {
+          for (size_t c = r.begin(); c != r.end(); ++c) {
+            if (!s.owns_cluster(c)) continue;
+            double e = 0.0;
+            for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) {
+              const uint32_t p = k.polygons[j];
+              const double rho = mean_component(s.material_of(p).reflectance);
+              e += std::abs(s.unshot_energy[p] + rho * amb * double(tris.area[p]));
+            }
+            b = std::max(b, Best{e, -int32_t(c)});
+          }
+          return b;
+        },
+        [](const Best& a, const Best& b) { return std::max(a, b); });
+    if (found.first > 0.0) best_energy = found.first, best = -found.second;
+  } else {
+    for (size_t c = 0; c < nc; ++c) {
+      if (energy[c] > best_energy) best_energy = energy[c], best = int32_t(c);
+    }
   }
   if (s.ranks) std::tie(best_energy, best) = s.ranks->max_location(best_energy, best);
   if (best < 0 || !(best_energy > 0.0)) return std::nullopt;
@@ -39,8 +69,8 @@ ShotSource freeze_source(SolverState& s, size_t c, double energy) {
   // ambient; its unshot radiosity becomes that much negative, shot later if still significant.
   // A cluster lies in one Pure: one reflectance.
   Vec3 over(0.0f);
-  if (s.options.overshoot)
-    over = s.material_of(k.polygons[k.first[c]]).reflectance * ambient_estimate(s);
+  const bool overshoot = s.options.overshoot;
+  if (overshoot) over = s.material_of(k.polygons[k.first[c]]).reflectance * ambient_estimate(s);
   auto set_unshot = [&](const Vec3& add, bool assign) {
     for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) {
       for (VertexState& v : s.vertex_states[k.polygons[j]]) {
@@ -48,12 +78,12 @@ ShotSource freeze_source(SolverState& s, size_t c, double energy) {
       }
     }
   };
-  if (s.options.overshoot) set_unshot(over, false);
+  if (overshoot) set_unshot(over, false);
   ShotSource src = make_shot_source(s, int32_t(c));
   set_unshot(-over, true);
   std::vector<double> left;
   for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) {
-    left.push_back(s.options.overshoot ? polygon_unshot_energy(s, k.polygons[j]) : 0.0);
+    left.push_back(overshoot ? polygon_unshot_energy(s, k.polygons[j]) : 0.0);
   }
   set_unshot_energies(s, {k.polygons.data() + k.first[c], left.size()}, left);
 

@@ -1,0 +1,33 @@
+// The progressive solver's loop: which cluster shoots next.
+#include "solver/solver.h"
+
+#include <gtest/gtest.h>
+
+#include "scenegen/scenegen.h"
+
+namespace rad {
+namespace {
+
+double unshot_after(const Hierarchy& h, bool overshoot, int shots) {
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  SolverOptions o;
+  o.overshoot = overshoot;
+  o.converge = 0.0;
+  o.max_shots = shots;
+  SolverState s = make_solver_state(h, o);
+  solve(s, *vis);
+  return s.unshot_fraction();
+}
+
+TEST(Solver, OvershootingLeavesNoMoreUnshotThanShootingWithout) {
+  // Small clusters of many reflectances: each holds -rho x ambient after its shot. Chosen by what
+  // they held, those went first and shot next to nothing, and the unshot energy grew (39% after
+  // 40 shots here, against 23% without overshooting).
+  const Hierarchy h = build_hierarchy(generate_scene(SceneKind::FurnishedRoom, 1000, 1));
+  const double plain = unshot_after(h, false, 40), over = unshot_after(h, true, 40);
+  std::printf("unshot after 40 shots: %.4f without overshooting, %.4f with\n", plain, over);
+  EXPECT_LE(over, 1.25 * plain);
+}
+
+}  // namespace
+}  // namespace rad
