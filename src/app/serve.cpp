@@ -30,6 +30,7 @@ int run_serve(const CommandLine& cmd) {
   const PreparedSolve prepared(hierarchy, run);
   SessionOptions so;
   so.solver = run.solver;
+  limit_kept_answers(so.solver, solve_memory_limit(0, false));
   so.ambient = outputs.ambient;
   so.curve = outputs.tonemap;
   so.exposure = outputs.exposure;

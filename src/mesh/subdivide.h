@@ -15,9 +15,9 @@ struct NewMidpoint {
 
 /// Splits leaf element `e` of `p` into four children (corner a, corner b, corner c, middle).
 /// A midpoint already made by a neighbouring element of the same polygon is reused, so shared
-/// vertices exist once. Midpoints created here get the position of the edge's middle and zero
-/// radiosity; they are written to `created` (up to three) and their count returned. The caller
-/// sets their radiosity.
+/// vertices exist once. Midpoints created here get the position of the edge's middle; they are
+/// written to `created` (up to three) and their count returned. What else a vertex holds is the
+/// caller's (the solver grows its vertex states to the new vertex count and sets them).
 int split_element(PolygonMesh& p, uint32_t e, NewMidpoint created[3]);
 
 /// Longest edge of element `e`.

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <thread>
 
+#include "core/memory.h"
 #include "solver/ranks.h"
 
 namespace rad {
@@ -17,6 +18,15 @@ int thread_count(int requested) {
   const int cores = tbb::info::default_concurrency();
   if (cores < int(std::thread::hardware_concurrency())) return cores;
   return std::max(1, cores / local_rank_count());
+}
+
+size_t solve_memory_limit(size_t max_memory, bool under_mpi) {
+  if (max_memory > 0) return max_memory;
+  return size_t(0.9 * double(machine_memory_bytes()) / double(under_mpi ? local_rank_count() : 1));
+}
+
+void limit_kept_answers(SolverOptions& o, size_t memory_limit) {
+  if (memory_limit > 0) o.kept_rays_bytes = std::min(o.kept_rays_bytes, memory_limit / 8);
 }
 
 // Constructed in place: a global_control copied or moved is not registered with TBB, and the

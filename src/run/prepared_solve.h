@@ -14,6 +14,13 @@ namespace rad {
 /// on this machine (all of them without MPI).
 int thread_count(int requested);
 
+/// The memory a solve may take: `max_memory` when given (> 0), else 90% of this machine's (or
+/// its cgroup's), shared by the MPI ranks that run on it (`under_mpi`).
+size_t solve_memory_limit(size_t max_memory, bool under_mpi);
+
+/// Kept shadow-ray answers (solver/kept_rays.h) take at most an eighth of a solve's memory.
+void limit_kept_answers(SolverOptions& o, size_t memory_limit);
+
 /// The visibility backend over a hierarchy, and TBB held at the run's thread count for as long
 /// as this lives (the backend's build included).
 class PreparedSolve {

@@ -104,10 +104,7 @@ SceneJobResult run_scene_job(const RunOptions& run, const SceneJob& job, Ranks* 
   // the memory before spending any time on it, and stop one that reaches it. Under MPI the
   // machine's memory is shared by its ranks, and rank 0 holds the whole mesh at the end (the
   // bound is the whole scene's on every rank).
-  const size_t memory_limit =
-      job.max_memory > 0
-          ? job.max_memory
-          : size_t(0.9 * double(machine_memory_bytes()) / double(ranks ? local_rank_count() : 1));
+  const size_t memory_limit = solve_memory_limit(job.max_memory, ranks != nullptr);
   const double growth = worst_case_growth_bytes(state);
   if (ranks) distribute(state, *ranks, fingerprint ^ uint64_t(ranks->size()));
   times.build = since(t);
@@ -125,10 +122,7 @@ SceneJobResult run_scene_job(const RunOptions& run, const SceneJob& job, Ranks* 
                             state.min_size, format_bytes(double(memory_limit)),
                             job.max_memory > 0 ? " (--max-memory)" : " (90% of this machine's)"));
   }
-  // Kept shadow-ray answers (solver/kept_rays.h) take at most an eighth of the limit.
-  if (memory_limit > 0) {
-    state.options.kept_rays_bytes = std::min(state.options.kept_rays_bytes, memory_limit / 8);
-  }
+  limit_kept_answers(state.options, memory_limit);
   say(fmt::format(
       "Memory: {} now, at most {} more by subdivision, {} per shot logged and {} of "
       "kept shadow-ray answers (limit {})",

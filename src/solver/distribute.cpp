@@ -54,6 +54,7 @@ void release_foreign(SolverState& s) {
   for (size_t p = 0; p < s.mesh.polygons.size(); ++p) {
     if (s.owns(p)) continue;
     s.mesh.polygons[p] = PolygonMesh{};
+    std::vector<VertexState>().swap(s.vertex_states[p]);
     std::vector<VertexCopy>().swap(s.shared.copies[p]);
     s.unshot_energy[p] = 0.0;
   }

@@ -17,7 +17,8 @@ namespace rad {
 std::optional<Shooter> choose_shooter(const SolverState& s) {
   // The largest of the clusters' energies, kept current shot by shot for the clusters a shot
   // changed (ties: the lowest index). A shot without Lights lists changes nearly every cluster,
-  // so a heap would be rebuilt each time; one pass over a double a cluster costs less. Under MPI
+  // so a heap would be rebuilt each time; one pass over a double a cluster costs less (with
+  // overshooting, one parallel pass over the polygons). Under MPI
   // each rank looks at its own clusters (the others' are 0), and one reduction picks among them.
   const std::vector<double>& energy = s.cluster_energy;
   const size_t nc = energy.size();
@@ -44,6 +45,7 @@ std::optional<Shooter> choose_shooter(const SolverState& s) {
               const double rho = mean_component(s.material_of(p).reflectance);
               e += std::abs(s.unshot_energy[p] + rho * amb * double(tris.area[p]));
             }
+            if (!(e > 0.0)) continue;  // NaN too: it would win or lose by its index alone
             b = std::max(b, Best{e, -int32_t(c)});
           }
           return b;
@@ -117,19 +119,9 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   std::vector<double> absorbed(receivers.size(), 0.0), unshot(receivers.size(), 0.0);
   std::vector<uint8_t> refining(receivers.size(), 0);
   auto count = [&](size_t i) {
-    const uint32_t p = receivers[i];
-    const PolygonMesh& m = s.mesh.polygons[p];
-    const std::vector<VertexState>& vs = s.vertex_states[p];
-    const Vec3 absorptance = Vec3(1.0f) - s.material_of(p).reflectance;
-    double a = 0.0, u = 0.0;  // one walk for both (u as polygon_unshot_energy sums it)
-    for_each_leaf(m, [&](uint32_t e) {
-      const Element& el = m.elements[e];
-      const VertexState &v0 = vs[el.v[0]], &v1 = vs[el.v[1]], &v2 = vs[el.v[2]];
-      a += double(el.area) * mean_component(absorptance * (v0.shot + v1.shot + v2.shot)) / 3.0;
-      u += double(el.area) * double(mean_component(v0.unshot + v1.unshot + v2.unshot)) / 3.0;
-    });
-    absorbed[i] = a;
-    unshot[i] = u;
+    const PolygonEnergies e = polygon_energies(s, receivers[i]);
+    absorbed[i] = e.absorbed;
+    unshot[i] = e.unshot;
   };
   tbb::parallel_for(size_t(0), receivers.size(), [&](size_t i) {
     count(i);

@@ -13,11 +13,12 @@ namespace rad {
 
 struct Shooter {
   int32_t cluster;
-  double energy;  // its unshot energy
+  double energy;  // what it shoots: its unshot energy (with overshooting, plus its share)
 };
 
-/// The cluster with the most unshot energy; ties go to the lowest index. None when nothing is
-/// left to shoot. Collective under MPI.
+/// The cluster with the most unshot energy (with overshooting: the most to shoot, its unshot
+/// energy plus its share of the ambient term); ties go to the lowest index. None when nothing
+/// is left to shoot. Collective under MPI.
 std::optional<Shooter> choose_shooter(const SolverState& s);
 
 /// One shot: choose the shooter, shoot it to every receiving vertex, refine the receivers,

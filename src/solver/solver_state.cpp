@@ -32,12 +32,18 @@ SolverStats& SolverStats::operator+=(const SolverStats& o) {
   return *this;
 }
 
-double polygon_unshot_energy(const SolverState& s, size_t p) {
+PolygonEnergies polygon_energies(const SolverState& s, size_t p) {
+  const PolygonMesh& m = s.mesh.polygons[p];
   const std::vector<VertexState>& vs = s.vertex_states[p];
-  double e = 0.0;
-  for_each_leaf_vertex_sum(
-      s.mesh.polygons[p], [&](uint32_t v) { return vs[v].unshot; },
-      [&](float area, Vec3 sum) { e += double(area) * double(mean_component(sum)) / 3.0; });
+  const Vec3 absorptance = Vec3(1.0f) - s.material_of(p).reflectance;
+  PolygonEnergies e;
+  for_each_leaf(m, [&](uint32_t l) {
+    const Element& el = m.elements[l];
+    const VertexState &v0 = vs[el.v[0]], &v1 = vs[el.v[1]], &v2 = vs[el.v[2]];
+    e.absorbed +=
+        double(el.area) * mean_component(absorptance * (v0.shot + v1.shot + v2.shot)) / 3.0;
+    e.unshot += double(el.area) * double(mean_component(v0.unshot + v1.unshot + v2.unshot)) / 3.0;
+  });
   return e;
 }
 

@@ -221,8 +221,17 @@ void set_unshot_energies(SolverState& s, std::span<const uint32_t> polygons,
 /// The totals from this rank's fixed-point sums (summed over the ranks: collective under MPI).
 void share_unshot_totals(SolverState& s);
 
+/// What polygon p absorbed of the last shot (its vertices' `shot` times 1 - rho) and the unshot
+/// energy it holds, each integrated over its leaf elements (mean over channels), in one walk.
+struct PolygonEnergies {
+  double absorbed = 0.0, unshot = 0.0;
+};
+PolygonEnergies polygon_energies(const SolverState& s, size_t p);
+
 /// Unshot energy of polygon p integrated over its leaf elements (mean over channels).
-double polygon_unshot_energy(const SolverState& s, size_t p);
+inline double polygon_unshot_energy(const SolverState& s, size_t p) {
+  return polygon_energies(s, p).unshot;
+}
 
 /// The ambient term from the per-polygon unshot energies (mean over channels, signed): cheap
 /// enough to evaluate every shot.

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "scene/parser.h"
+#include "scenegen/scenegen.h"
 #include "solver/solver.h"
 
 namespace rad {
@@ -30,6 +31,26 @@ TEST(Determinism, OneAndTwoThreadsGiveBitIdenticalRadiosity) {
   const auto two = solve_cornell(BackendKind::Embree, 2);
   ASSERT_EQ(one.size(), two.size());
   EXPECT_EQ(0, std::memcmp(one.data(), two.data(), one.size() * sizeof(Vec3)));
+}
+
+TEST(Determinism, OvershootingChoosesTheSameShootersWhateverTheThreadCount) {
+  // With overshooting the shooter is found by a parallel reduction over the clusters: a room of
+  // many small clusters, so it runs in many pieces.
+  const Hierarchy h = build_hierarchy(generate_scene(SceneKind::FurnishedRoom, 1000, 1));
+  auto shooters = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+    const auto vis = make_visibility_backend(BackendKind::Embree, h);
+    SolverOptions o;
+    o.overshoot = true;
+    o.max_shots = 6;
+    SolverState s = make_solver_state(h, o);
+    solve(s, *vis);
+    EXPECT_GT(s.clusters.size(), 1000u);
+    std::vector<int32_t> out;
+    for (const ShotRecord& r : s.history) out.push_back(r.source);
+    return out;
+  };
+  EXPECT_EQ(shooters(1), shooters(2));
 }
 
 TEST(Determinism, GridAndEmbreeAgreeToOnePartInAHundredThousand) {

@@ -125,8 +125,9 @@ TEST(Edits, ChangingAColourConvergesToAFreshSolve) {
 }
 
 TEST(Edits, AColourOfTheSameMeanReflectanceConvergesToAFreshSolve) {
-  // The edit's unshot radiosity is +H in one channel and -H in another: its mean over the
-  // channels is zero, yet the light it changes must still be shot.
+  // The edit's unshot radiosity is +0.2 H in red and -0.2 H in green, so its mean over the
+  // channels is small (H is not grey there, so not zero: where it is exactly zero the edit is
+  // never shot, a gap the signed mean-over-channels energy leaves), yet it must be shot.
   const Vec3 same_mean(0.4f, 0.5f, 0.2f);  // kLeft is (0.6, 0.3, 0.2)
   EXPECT_LE(edit_then_continue("left", {same_mean, Vec3(0)}, kLamp, same_mean, kBlack), 0.005);
 }
