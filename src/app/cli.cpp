@@ -118,7 +118,7 @@ struct Solving {
         ->capture_default_str();
     app.add_flag("--overshoot", o.overshoot,
                  "Overshooting (Feda & Purgathofer 1992): shooters also shoot their share of the "
-                 "ambient term");
+                 "ambient term (better when --time-limit stops a large scene far from converged)");
   }
   void apply(RunOptions& r) const {
     r.backend = parse_backend_kind(backend);
