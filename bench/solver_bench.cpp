@@ -190,7 +190,7 @@ std::unique_ptr<ShotCase> prepare_shot(SolverState s, const VisibilityBackend& v
     for (VertexState& v : s.vertex_states[p]) v.unshot = Vec3(0.0f);
   c->major = s.options.major_shot_fraction > 0.0 &&
              shooter->energy >= s.options.major_shot_fraction * s.emitted_energy;
-  set_unshot_energies(s, own, std::vector<double>(own.size(), 0.0));
+  set_unshot_energies(s, own, std::vector<UnshotEnergy>(own.size()));
   share_unshot_totals(s);
   c->before = s;
   c->size_before = state_size(s);

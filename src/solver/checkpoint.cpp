@@ -136,7 +136,7 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
     }
   }
   std::vector<Material> materials;
-  std::vector<double> unshot_energy;
+  std::vector<UnshotEnergy> unshot_energy;
   r.vec(materials);
   r.vec(unshot_energy);
   if (materials.size() != s.materials.size() || unshot_energy.size() != s.unshot_energy.size()) {

@@ -56,7 +56,7 @@ void release_foreign(SolverState& s) {
     s.mesh.polygons[p] = PolygonMesh{};
     std::vector<VertexState>().swap(s.vertex_states[p]);
     std::vector<VertexCopy>().swap(s.shared.copies[p]);
-    s.unshot_energy[p] = 0.0;
+    s.unshot_energy[p] = UnshotEnergy{};
   }
 }
 
@@ -96,7 +96,7 @@ std::vector<RankReport> collect(SolverState& s) {
         in.fail(fmt::format("polygon {} is not the rank's", p));
       read_polygon(in, s.mesh.polygons[p], s.vertex_states[p], s.shared.copies[p],
                    s.mesh.polygons.size());
-      s.unshot_energy[p] = in.pod<double>();
+      s.unshot_energy[p] = in.pod<UnshotEnergy>();
       ++received[size_t(r)];
     }
     if (r > 0 && received[size_t(r)] != expected[size_t(r)])

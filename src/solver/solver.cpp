@@ -43,7 +43,10 @@ std::optional<Shooter> choose_shooter(const SolverState& s) {
             for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) {
               const uint32_t p = k.polygons[j];
               const double rho = mean_component(s.material_of(p).reflectance);
-              e += std::abs(s.unshot_energy[p] + rho * amb * double(tris.area[p]));
+              // The share changes the sum; what cancels between the channels stays to shoot.
+              const UnshotEnergy& u = s.unshot_energy[p];
+              e += std::abs(u.sum + rho * amb * double(tris.area[p])) + u.magnitude -
+                   std::abs(u.sum);
             }
             if (!(e > 0.0)) continue;  // NaN too: it would win or lose by its index alone
             b = std::max(b, Best{e, -int32_t(c)});
@@ -83,9 +86,9 @@ ShotSource freeze_source(SolverState& s, size_t c, double energy) {
   if (overshoot) set_unshot(over, false);
   ShotSource src = make_shot_source(s, int32_t(c));
   set_unshot(-over, true);
-  std::vector<double> left;
+  std::vector<UnshotEnergy> left;
   for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) {
-    left.push_back(overshoot ? polygon_unshot_energy(s, k.polygons[j]) : 0.0);
+    left.push_back(overshoot ? polygon_unshot_energy(s, k.polygons[j]) : UnshotEnergy{});
   }
   set_unshot_energies(s, {k.polygons.data() + k.first[c], left.size()}, left);
 
@@ -116,7 +119,8 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   // receiver also says whether it needs refining (most of a large scene's do not); those
   // refined are counted again after.
   const std::vector<uint32_t>& receivers = s.receivers;
-  std::vector<double> absorbed(receivers.size(), 0.0), unshot(receivers.size(), 0.0);
+  std::vector<double> absorbed(receivers.size(), 0.0);
+  std::vector<UnshotEnergy> unshot(receivers.size());
   std::vector<uint8_t> refining(receivers.size(), 0);
   auto count = [&](size_t i) {
     const PolygonEnergies e = polygon_energies(s, receivers[i]);

@@ -37,13 +37,21 @@ PolygonEnergies polygon_energies(const SolverState& s, size_t p) {
   const std::vector<VertexState>& vs = s.vertex_states[p];
   const Vec3 absorptance = Vec3(1.0f) - s.material_of(p).reflectance;
   PolygonEnergies e;
+  DVec3 channels(0.0);
   for_each_leaf(m, [&](uint32_t l) {
     const Element& el = m.elements[l];
     const VertexState &v0 = vs[el.v[0]], &v1 = vs[el.v[1]], &v2 = vs[el.v[2]];
+    const Vec3 u = v0.unshot + v1.unshot + v2.unshot;
     e.absorbed +=
         double(el.area) * mean_component(absorptance * (v0.shot + v1.shot + v2.shot)) / 3.0;
-    e.unshot += double(el.area) * double(mean_component(v0.unshot + v1.unshot + v2.unshot)) / 3.0;
+    e.unshot.sum += double(el.area) * double(mean_component(u)) / 3.0;
+    channels += DVec3(u) * (double(el.area) / 3.0);
   });
+  const bool one_sign = glm::all(glm::greaterThanEqual(channels, DVec3(0.0))) ||
+                        glm::all(glm::lessThanEqual(channels, DVec3(0.0)));
+  e.unshot.magnitude =
+      one_sign ? std::abs(e.unshot.sum)
+               : (std::abs(channels.x) + std::abs(channels.y) + std::abs(channels.z)) / 3.0;
   return e;
 }
 
@@ -64,7 +72,6 @@ Fixed128 to_fixed(double e, double scale) {
   if (!(x == x)) return 0;  // NaN: counted as nothing rather than undefined
   return Fixed128(std::nearbyint(std::clamp(x, -most, most)));
 }
-Fixed128 abs_fixed(Fixed128 v) { return v < 0 ? -v : v; }
 
 // The sums of the absolute and the signed values term(i) gives for i < n. Integer sums are
 // exact, so the parallel reduction's order does not matter.
@@ -89,15 +96,15 @@ FixedSums sum_fixed(size_t n, const Term& term) {
 double cluster_unshot_energy(const SolverState& s, size_t c) {
   double e = 0.0;
   for (uint32_t j = s.clusters.first[c]; j < s.clusters.first[c + 1]; ++j)
-    e += std::abs(s.unshot_energy[s.clusters.polygons[j]]);
+    e += s.unshot_energy[s.clusters.polygons[j]].magnitude;
   return e;
 }
 
 void update_unshot_totals(SolverState& s) {
   const double scale = fixed_scale(s);
   const FixedSums t = sum_fixed(s.unshot_energy.size(), [&](size_t p) {
-    const Fixed128 q = to_fixed(s.unshot_energy[p], scale);
-    return FixedSums{abs_fixed(q), q};
+    const UnshotEnergy& u = s.unshot_energy[p];
+    return FixedSums{to_fixed(u.magnitude, scale), to_fixed(u.sum, scale)};
   });
   s.unshot_abs_fixed = t[0], s.unshot_signed_fixed = t[1];
   s.cluster_energy.resize(s.clusters.size());
@@ -107,13 +114,13 @@ void update_unshot_totals(SolverState& s) {
 }
 
 void set_unshot_energies(SolverState& s, std::span<const uint32_t> polygons,
-                         std::span<const double> energies) {
+                         std::span<const UnshotEnergy> energies) {
   assert(polygons.size() == energies.size());
   const double scale = fixed_scale(s);
   const FixedSums d = sum_fixed(polygons.size(), [&](size_t i) {
-    const Fixed128 before = to_fixed(s.unshot_energy[polygons[i]], scale);
-    const Fixed128 after = to_fixed(energies[i], scale);
-    return FixedSums{abs_fixed(after) - abs_fixed(before), after - before};
+    const UnshotEnergy &before = s.unshot_energy[polygons[i]], &after = energies[i];
+    return FixedSums{to_fixed(after.magnitude, scale) - to_fixed(before.magnitude, scale),
+                     to_fixed(after.sum, scale) - to_fixed(before.sum, scale)};
   });
   s.unshot_abs_fixed += d[0], s.unshot_signed_fixed += d[1];
   std::vector<uint32_t> clusters;
@@ -285,14 +292,14 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   });
   s.materials.reserve(h.objects.size());
   for (const SceneObject& o : h.objects) s.materials.push_back(o.material);
-  s.unshot_energy.assign(h.triangles.size(), 0.0);
+  s.unshot_energy.assign(h.triangles.size(), UnshotEnergy{});
   double total_area = 0.0;
   s.vertex_states.resize(h.triangles.size());
   for (size_t t = 0; t < h.triangles.size(); ++t) {
     const Vec3 e = s.material_of(t).emission;
     s.vertex_states[t].assign(s.mesh.polygons[t].vertex_count(), VertexState{.unshot = e});
     s.unshot_energy[t] = polygon_unshot_energy(s, t);
-    s.emitted_energy += s.unshot_energy[t];
+    s.emitted_energy += s.unshot_energy[t].sum;
     total_area += h.triangles.area[t];
   }
   s.reference_energy = s.emitted_energy;

@@ -45,6 +45,15 @@ struct VertexState {
   Vec3 major{0.0f};       // part of H gathered from the solver's major shots (see solver)
 };
 
+/// A polygon's unshot energy: its unshot radiosity integrated over its leaf elements. `sum` is
+/// the mean over the channels (signed: what the ambient term spreads); `magnitude` the mean of
+/// each channel's absolute value, what shooter choice and convergence use. They differ only when
+/// the channels differ in sign (an edit that changes a colour but not its mean reflectance gives
+/// +x in one and -x in another: a sum near 0, yet light to shoot); else magnitude = |sum|.
+struct UnshotEnergy {
+  double sum = 0.0, magnitude = 0.0;
+};
+
 /// One line of the convergence history.
 struct ShotRecord {
   int64_t shot;            // 1-based
@@ -109,10 +118,9 @@ struct SolverState {
   /// The shooting patches (SPEC §10), of at most (max_sample_grid x max_size)^2 each.
   Clusters clusters;
   SharedVertices shared;
-  /// Per polygon: unshot energy (area-integrated mean-channel unshot radiosity), kept current.
-  /// Negative after an edit lowers an emission or a reflectance (Chen 1990): shooter choice and
-  /// convergence use its absolute value.
-  std::vector<double> unshot_energy;
+  /// Per polygon: unshot energy, kept current. Negative after an edit lowers an emission or a
+  /// reflectance (Chen 1990): shooter choice and convergence use its magnitude.
+  std::vector<UnshotEnergy> unshot_energy;
   double emitted_energy = 0.0;  // sum of area x mean-channel emission
   /// What the unshot fraction and the fixed-point totals are relative to: the emitted energy,
   /// or, after an edit that left next to no emission, the emitted energy before it. Turning
@@ -134,7 +142,7 @@ struct SolverState {
   int64_t shots = 0;
   SolverStats stats;
   std::vector<ShotRecord> history;
-  /// Sums over the polygons (and the ranks) of |unshot_energy| and of unshot_energy, kept by
+  /// Sums over the polygons (and the ranks) of the unshot energies' magnitudes and sums, kept by
   /// update_unshot_totals, set_unshot_energies and share_unshot_totals; the same two over this
   /// rank's polygons in fixed point; per cluster, cluster_unshot_energy (0 for other ranks').
   double unshot_abs_total = 0.0, unshot_signed_total = 0.0;
@@ -202,7 +210,7 @@ bool on_triangle_edge(const std::array<Vec3, 3>& c, const Vec3& x);
 /// polygon edges (vertices from initial_vertices[p] on).
 void find_edge_midpoints(SolverState& s, std::span<const uint32_t> initial_vertices);
 
-/// Unshot energy of cluster c: the sum of its polygons' absolute unshot energies, in order.
+/// Unshot energy of cluster c: the sum of its polygons' unshot energy magnitudes, in order.
 double cluster_unshot_energy(const SolverState& s, size_t c);
 
 /// Sets the unshot totals and every cluster's energy from unshot_energy after it changed. The
@@ -216,7 +224,7 @@ void update_unshot_totals(SolverState& s);
 /// exact and the energy of their clusters current; then the caller calls share_unshot_totals.
 /// Parallel inside; costs what the polygons are, not the scene.
 void set_unshot_energies(SolverState& s, std::span<const uint32_t> polygons,
-                         std::span<const double> energies);
+                         std::span<const UnshotEnergy> energies);
 
 /// The totals from this rank's fixed-point sums (summed over the ranks: collective under MPI).
 void share_unshot_totals(SolverState& s);
@@ -224,12 +232,13 @@ void share_unshot_totals(SolverState& s);
 /// What polygon p absorbed of the last shot (its vertices' `shot` times 1 - rho) and the unshot
 /// energy it holds, each integrated over its leaf elements (mean over channels), in one walk.
 struct PolygonEnergies {
-  double absorbed = 0.0, unshot = 0.0;
+  double absorbed = 0.0;
+  UnshotEnergy unshot;
 };
 PolygonEnergies polygon_energies(const SolverState& s, size_t p);
 
-/// Unshot energy of polygon p integrated over its leaf elements (mean over channels).
-inline double polygon_unshot_energy(const SolverState& s, size_t p) {
+/// Unshot energy of polygon p integrated over its leaf elements.
+inline UnshotEnergy polygon_unshot_energy(const SolverState& s, size_t p) {
   return polygon_energies(s, p).unshot;
 }
 

@@ -59,11 +59,14 @@ TEST(UnshotTotals, AreTheSameBitsInAnyOrderOfThePolygons) {
   SolverState s = building_state(h);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for (double& e : s.unshot_energy) e = u(rng) * s.emitted_energy * 1e-3 * u(rng) * u(rng);
+  for (UnshotEnergy& e : s.unshot_energy) {
+    e.sum = u(rng) * s.emitted_energy * 1e-3 * u(rng) * u(rng);
+    e.magnitude = std::abs(e.sum);
+  }
   update_unshot_totals(s);
   const double abs_total = s.unshot_abs_total, signed_total = s.unshot_signed_total;
   double plain = 0.0;
-  for (double e : s.unshot_energy) plain += std::abs(e);
+  for (const UnshotEnergy& e : s.unshot_energy) plain += e.magnitude;
   EXPECT_NEAR(abs_total, plain, 1e-9 * plain);
   for (int k = 0; k < 5; ++k) {
     std::shuffle(s.unshot_energy.begin(), s.unshot_energy.end(), rng);

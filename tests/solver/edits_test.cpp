@@ -125,11 +125,37 @@ TEST(Edits, ChangingAColourConvergesToAFreshSolve) {
 }
 
 TEST(Edits, AColourOfTheSameMeanReflectanceConvergesToAFreshSolve) {
-  // The edit's unshot radiosity is +0.2 H in red and -0.2 H in green, so its mean over the
-  // channels is small (H is not grey there, so not zero: where it is exactly zero the edit is
-  // never shot, a gap the signed mean-over-channels energy leaves), yet it must be shot.
+  // The edit's unshot radiosity is +0.2 H in red and -0.2 H in green: its mean over the
+  // channels is small, yet it must be shot.
   const Vec3 same_mean(0.4f, 0.5f, 0.2f);  // kLeft is (0.6, 0.3, 0.2)
   EXPECT_LE(edit_then_continue("left", {same_mean, Vec3(0)}, kLamp, same_mean, kBlack), 0.005);
+}
+
+TEST(Edits, AColourChangeOfZeroMeanInAGreyRoomIsShotToo) {
+  // Everything grey under a white lamp, so H is grey: turning a grey wall reddish at the same
+  // mean reflectance gives unshot radiosity (+x, -x, 0), whose mean over the channels is zero
+  // (to rounding). Judged by that mean the edit was never shot and the solve stayed converged.
+  const Vec3 grey(0.5f), reddish(0.6f, 0.4f, 0.5f);
+  auto scene = [&](Vec3 left) {
+    SceneDescription d = edit_scene(kLamp, left, grey);
+    for (ObjectDescription& o : d.objects) {
+      if (o.name != "left" && o.name != "lamp" && o.name != "back") o.material.reflectance = grey;
+    }
+    return d;
+  };
+  const Hierarchy base_h = build_hierarchy(scene(grey));
+  const auto base_vis = make_visibility_backend(BackendKind::Embree, base_h);
+  SolverState edited = make_solver_state(base_h, options());
+  solve(edited, *base_vis);
+  set_material(edited, object_named(base_h, "left"), {reddish, Vec3(0)}, *base_vis);
+  EXPECT_GT(edited.unshot_fraction(), options().converge) << "the edit must leave work to do";
+  solve(edited, *base_vis);
+
+  const Hierarchy fresh_h = build_hierarchy(scene(reddish));
+  const auto fresh_vis = make_visibility_backend(BackendKind::Embree, fresh_h);
+  SolverState fresh = make_solver_state(fresh_h, options());
+  solve(fresh, *fresh_vis);
+  EXPECT_LE(worst_difference(edited, fresh), 0.005);
 }
 
 TEST(Edits, ReflectanceFromZeroConvergesToAFreshSolve) {
