@@ -116,9 +116,9 @@ struct Solving {
                    "MiB for shadow-ray answers kept between shots of the same cluster, which "
                    "casts the same rays again (0: trace every ray every time; same result)")
         ->capture_default_str();
-    app.add_flag("--overshoot", o.overshoot,
-                 "Overshooting (Feda & Purgathofer 1992): shooters also shoot their share of the "
-                 "ambient term (better when --time-limit stops a large scene far from converged)");
+    app.add_flag("!--no-overshoot", o.overshoot,
+                 "No overshooting (Feda & Purgathofer 1992, on by default: shooters also shoot "
+                 "their share of the ambient term, which converges in fewer shots)");
   }
   void apply(RunOptions& r) const {
     r.backend = parse_backend_kind(backend);

@@ -63,9 +63,9 @@ struct SolverOptions {
   /// errors came from.
   double major_shot_fraction = 0.02;
   /// Overshooting (Feda, Purgathofer 1992): each shooter also shoots its share of the ambient
-  /// term and keeps it as negative unshot radiosity. Off by default: it converges in fewer shots,
-  /// but subdivision then follows transient values, which costs accuracy.
-  bool overshoot = false;
+  /// term and keeps it as negative unshot radiosity; the next shooter is the cluster with the
+  /// most to shoot, share included (solver.cpp).
+  bool overshoot = true;
   /// Memory for shadow-ray answers kept between shots of the same cluster (kept_rays.h); 0: none.
   size_t kept_rays_bytes = size_t(128) << 20;
   int64_t max_shots = -1;   // < 0: no limit

@@ -18,12 +18,12 @@ same_bytes() {
   "$gen" building "$d/building.des" --size 3200 --lights-reach 1 >/dev/null || fail "rad-gen"
   "$rad" convert "$scenes/cornell_box.des" "$d/cornell.obj" -q || fail "convert"
   # name|ranks|scene|options (1, 2, 3 and 4 ranks): nested objects and OFF files, Lights lists,
-  # overshooting, a model with its automatic hierarchy, and a run to convergence (the stop test
-  # on exact sums).
+  # a run without overshooting, a model with its automatic hierarchy, and a run to convergence
+  # (the stop test on exact sums).
   local runs=(
     "original|1 2 4|$scenes/original_style.des|--max-shots 30"
     "building|2 3|$d/building.des|--max-shots 60"
-    "overshoot|2|$scenes/furnace_box.des|--max-shots 20 --overshoot"
+    "no-overshoot|2|$scenes/furnace_box.des|--max-shots 20 --no-overshoot"
     "model|3|$d/cornell.obj|--max-shots 20"
     "converged|2|$scenes/cornell_box.des|--converge 0.03"
   )
