@@ -108,14 +108,6 @@ struct StateBytes {
   size_t total() const { return polygon_structs + vertex_arrays + elements + midpoints + other; }
 };
 
-// The shot's receivers that step() hands to refine_after_shot: those with a leaf to split.
-std::vector<uint32_t> needing_refinement(const SolverState& s) {
-  std::vector<uint32_t> out;
-  for (uint32_t p : s.receivers)
-    if (needs_refinement(s, p)) out.push_back(p);
-  return out;
-}
-
 StateBytes solver_state_bytes(const SolverState& s) {
   StateBytes b;
   b.polygon_structs = heap_bytes(s.mesh.polygons) + heap_bytes(s.vertex_states);
@@ -198,7 +190,7 @@ std::unique_ptr<ShotCase> prepare_shot(SolverState s, const VisibilityBackend& v
   shoot_to_receivers(s, c->src, recorder, c->major);
   c->received = s.received;
   c->after = s;
-  refine_after_shot(s, c->src, vis, c->major, needing_refinement(s));
+  refine_after_shot(s, c->src, vis, c->major, needing_refinement(s, s.receivers));
   c->size_refined = state_size(s);
   for (size_t p = 0; p < c->received.size(); ++p) {
     if (c->received[p]) c->receivers += c->after.mesh.polygons[p].vertex_count();
@@ -330,7 +322,8 @@ void bm_refine(benchmark::State& st, const SceneSpec& spec, bool later, int thre
   for (auto _ : st) {
     SolverState s = c.after;
     const auto t0 = std::chrono::steady_clock::now();
-    refine_after_shot(s, c.src, vis, c.major, needing_refinement(s));  // of c.after's receivers
+    refine_after_shot(s, c.src, vis, c.major,
+                      needing_refinement(s, s.receivers));  // of c.after's receivers
     const auto t1 = std::chrono::steady_clock::now();
     st.SetIterationTime(std::chrono::duration<double>(t1 - t0).count());
     splits += double(s.stats.subdivisions - c.after.stats.subdivisions);

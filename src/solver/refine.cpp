@@ -53,6 +53,16 @@ bool needs_refinement(const SolverState& s, uint32_t p) {
   return any;
 }
 
+std::vector<uint32_t> needing_refinement(const SolverState& s, std::span<const uint32_t> polygons) {
+  std::vector<uint8_t> needs(polygons.size());
+  tbb::parallel_for(size_t(0), polygons.size(),
+                    [&](size_t i) { needs[i] = needs_refinement(s, polygons[i]); });
+  std::vector<uint32_t> out;
+  for (size_t i = 0; i < polygons.size(); ++i)
+    if (needs[i]) out.push_back(polygons[i]);
+  return out;
+}
+
 Vec3 regather_shots(const SolverState& s, const Vec3& x, uint32_t polygon, bool major_only,
                     const VisibilityBackend& vis, const GatherSettings& settings,
                     GatherScratch& scratch, Vec3* major_part) {
@@ -244,13 +254,7 @@ void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBa
 void refine_after_edit(SolverState& s, const Vec3& d_rho, const VisibilityBackend& vis,
                        std::span<const uint32_t> polygons) {
   const GatherSettings settings = gather_settings(s);
-  std::vector<uint8_t> needs(polygons.size());
-  tbb::parallel_for(size_t(0), polygons.size(),
-                    [&](size_t i) { needs[i] = needs_refinement(s, polygons[i]); });
-  std::vector<uint32_t> to_split;
-  for (size_t i = 0; i < polygons.size(); ++i)
-    if (needs[i]) to_split.push_back(polygons[i]);
-  refine(s, to_split, false, [&](const ExactVertex& x, GatherScratch& sc) {
+  refine(s, needing_refinement(s, polygons), false, [&](const ExactVertex& x, GatherScratch& sc) {
     std::vector<VertexState>& vs = s.vertex_states[x.polygon];
     const VertexState &a = vs[x.a], &b = vs[x.b];
     VertexState& mid = vs[x.vertex];

@@ -20,6 +20,9 @@ inline bool differs(const Vec3& a, const Vec3& b, float limit) {
 /// is by both refinements.
 bool needs_refinement(const SolverState& s, uint32_t p);
 
+/// Those of `polygons` that needs_refinement names, in order.
+std::vector<uint32_t> needing_refinement(const SolverState& s, std::span<const uint32_t> polygons);
+
 /// The shots of s.shot_log gathered again at point x of `polygon` (all, or the major ones only);
 /// the major ones' part is also written to *major_part when given.
 Vec3 regather_shots(const SolverState& s, const Vec3& x, uint32_t polygon, bool major_only,

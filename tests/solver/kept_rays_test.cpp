@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "scene/parser.h"
+#include "scene_builder.h"
 #include "scenegen/scenegen.h"
 #include "solver/edits.h"
 #include "solver/solver.h"
@@ -28,10 +29,7 @@ Solved solve_with(const Hierarchy& h, BackendKind backend, size_t kept_bytes, in
   const auto vis = make_visibility_backend(backend, h);
   SolverOptions o;
   o.kept_rays_bytes = kept_bytes;
-  o.converge = 0.0;
-  o.max_shots = shots;
-  SolverState s = make_solver_state(h, o);
-  solve(s, *vis);
+  SolverState s = testing::solve_shots(h, *vis, o, shots);
   if (edit) {
     for (size_t i = 0; i < h.objects.size(); ++i) {
       if (h.objects[i].kind == ObjectKind::Pure &&

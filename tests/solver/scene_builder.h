@@ -5,6 +5,7 @@
 
 #include "hierarchy/hierarchy.h"
 #include "scene/description.h"
+#include "solver/solver.h"
 #include "solver/solver_state.h"
 
 namespace rad::testing {
@@ -51,6 +52,16 @@ inline void add_closed_box(SceneDescription& s, Vec3 lo, Vec3 hi, Vec3 rho, Vec3
   add_quad(s, "back", p[3], p[2], p[6], p[7], rho, e, k);    // y = hi, normal -y
   add_quad(s, "left", p[0], p[3], p[7], p[4], rho, e, k);    // x = lo, normal +x
   add_quad(s, "right", p[1], p[5], p[6], p[2], rho, e, k);   // x = hi, normal -x
+}
+
+/// A solve of `h` with options `o` stopped after `shots` shots (never by convergence).
+inline SolverState solve_shots(const Hierarchy& h, const VisibilityBackend& vis, SolverOptions o,
+                               int shots) {
+  o.converge = 0.0;
+  o.max_shots = shots;
+  SolverState s = make_solver_state(h, o);
+  solve(s, vis);
+  return s;
 }
 
 }  // namespace rad::testing

@@ -8,6 +8,7 @@
 
 #include <cstdio>
 
+#include "scene_builder.h"
 #include "scenegen/scenegen.h"
 
 namespace rad {
@@ -17,11 +18,7 @@ double unshot_after(const Hierarchy& h, bool overshoot, int shots) {
   const auto vis = make_visibility_backend(BackendKind::Embree, h);
   SolverOptions o;
   o.overshoot = overshoot;
-  o.converge = 0.0;
-  o.max_shots = shots;
-  SolverState s = make_solver_state(h, o);
-  solve(s, *vis);
-  return s.unshot_fraction();
+  return testing::solve_shots(h, *vis, o, shots).unshot_fraction();
 }
 
 TEST(Solver, OvershootingKeepsTheUnshotEnergyNearShootingWithout) {
