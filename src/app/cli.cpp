@@ -116,6 +116,9 @@ struct Solving {
                    "MiB for shadow-ray answers kept between shots of the same cluster, which "
                    "casts the same rays again (0: trace every ray every time; same result)")
         ->capture_default_str();
+    app.add_flag("!--no-culling", o.occlusion_culling,
+                 "No occlusion culling (on by default: receivers that a flat occluder, a wall, "
+                 "hides from a source get no shadow rays)");
     app.add_flag("!--no-overshoot", o.overshoot,
                  "No overshooting (Feda & Purgathofer 1992, on by default: shooters also shoot "
                  "their share of the ambient term, which converges in fewer shots)");

@@ -99,6 +99,7 @@ void write_stats_json(const std::string& path, const RunOptions& run, const Scen
         {"interpolated_midpoints", s.stats.interpolated_midpoints},
         {"vertex_evaluations", s.stats.vertex_evaluations},
         {"culled", s.stats.culled},
+        {"hidden_triangles", s.stats.hidden},
         {"vertices", count_vertices(s.mesh)},
         {"elements", count_leaves(s.mesh)},
         {"emitted_energy", s.emitted_energy},

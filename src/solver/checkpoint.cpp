@@ -52,7 +52,11 @@ uint64_t solve_fingerprint(const Hierarchy& h, const SolverOptions& o, BackendKi
   }
   f.add(o.shadows).add(o.sample_grid).add(o.max_sample_grid).add(o.method);
   f.add(o.subdivision_threshold).add(o.midpoints).add(o.min_size).add(o.max_size);
-  f.add(o.intensity_cut).add(o.major_shot_fraction).add(o.overshoot).add(backend);
+  f.add(o.intensity_cut)
+      .add(o.major_shot_fraction)
+      .add(o.overshoot)
+      .add(o.occlusion_culling)
+      .add(backend);
   return f.value();
 }
 

@@ -66,6 +66,10 @@ struct SolverOptions {
   /// term and keeps it as negative unshot radiosity; the next shooter is the cluster with the
   /// most to shoot, share included (solver.cpp).
   bool overshoot = true;
+  /// Occlusion culling (occlusion_culling.h): receivers that a flat occluder hides from a source
+  /// get no shadow rays and no gain. The same result, but for gains under the intensity cut,
+  /// which are otherwise taken unoccluded, through the walls.
+  bool occlusion_culling = true;
   /// Memory for shadow-ray answers kept between shots of the same cluster (kept_rays.h); 0: none.
   size_t kept_rays_bytes = size_t(128) << 20;
   int64_t max_shots = -1;   // < 0: no limit

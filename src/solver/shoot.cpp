@@ -59,12 +59,26 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
   receivers.clear();
   // With a Lights list only the triangles it names are looked at; under MPI, only this rank's.
   const int32_t influence = shooter_influence(s, src);
-  const std::vector<TriangleRange> all{{0, uint32_t(tris.size())}};
-  for (const TriangleRange& r : influence < 0 ? all : s.hierarchy->objects[size_t(influence)].lit) {
-    tbb::parallel_for(size_t(r.first), size_t(r.first) + r.count,
-                      [&](size_t p) { received[p] = s.owns(p) && may_receive(s, p, src); });
-    for (size_t p = r.first; p < size_t(r.first) + r.count; ++p)
-      if (received[p]) receivers.push_back(uint32_t(p));
+  if (influence < 0 && !s.culling.empty() && s.options.occlusion_culling) {
+    // Without a list, the triangles not hidden behind a flat occluder (occlusion_culling.h).
+    std::vector<uint32_t>& unhidden = s.unhidden;
+    unhidden_triangles(s.culling, src, unhidden);
+    s.stats.hidden += tris.size() - unhidden.size();
+    tbb::parallel_for(size_t(0), unhidden.size(), [&](size_t i) {
+      const uint32_t p = unhidden[i];
+      received[p] = s.owns(p) && may_receive(s, p, src);
+    });
+    for (uint32_t p : unhidden)
+      if (received[p]) receivers.push_back(p);
+  } else {
+    const std::vector<TriangleRange> all{{0, uint32_t(tris.size())}};
+    for (const TriangleRange& r :
+         influence < 0 ? all : s.hierarchy->objects[size_t(influence)].lit) {
+      tbb::parallel_for(size_t(r.first), size_t(r.first) + r.count,
+                        [&](size_t p) { received[p] = s.owns(p) && may_receive(s, p, src); });
+      for (size_t p = r.first; p < size_t(r.first) + r.count; ++p)
+        if (received[p]) receivers.push_back(uint32_t(p));
+    }
   }
   // Work items: a polygon's vertices, or 64 of them for a finely subdivided one, so its
   // vertices spread across threads too.

@@ -14,6 +14,7 @@
 #include "mesh/patch_mesh.h"
 #include "solver/clusters.h"
 #include "solver/kept_rays.h"
+#include "solver/occlusion_culling.h"
 #include "solver/options.h"
 #include "solver/shot_source.h"
 #include "visibility/backend.h"
@@ -23,9 +24,11 @@ namespace rad {
 /// Counters of a solve, summed over shots (per-thread during a shot, combined after it).
 struct SolverStats {
   VisibilityStats rays;
-  uint64_t intensity_cuts = 0;      // shadow rays skipped by the intensity cut
-  uint64_t kept_answers = 0;        // shadow rays not traced again: answer kept (kept_rays.h)
-  uint64_t culled = 0;              // vertex evaluations skipped: source behind or facing away
+  uint64_t intensity_cuts = 0;  // shadow rays skipped by the intensity cut
+  uint64_t kept_answers = 0;    // shadow rays not traced again: answer kept (kept_rays.h)
+  uint64_t culled = 0;          // vertex evaluations skipped: source behind or facing away
+  uint64_t hidden =
+      0;  // receiving triangles skipped whole: hidden by an occluder, or behind the source
   uint64_t vertex_evaluations = 0;  // vertex-to-source gathers computed
   uint64_t subdivisions = 0;        // elements split into four
   uint64_t exact_midpoints = 0;     // new vertices whose shot was computed
@@ -118,6 +121,9 @@ struct SolverState {
   /// The shooting patches (SPEC §10), of at most (max_sample_grid x max_size)^2 each.
   Clusters clusters;
   SharedVertices shared;
+  /// The flat occluders and the tree over the triangles that cull receivers hidden from a source
+  /// (empty without shadows).
+  OcclusionCulling culling;
   /// Per polygon: unshot energy, kept current. Negative after an edit lowers an emission or a
   /// reflectance (Chen 1990): shooter choice and convergence use its magnitude.
   std::vector<UnshotEnergy> unshot_energy;
@@ -153,6 +159,7 @@ struct SolverState {
   std::vector<uint8_t> received;
   std::vector<uint32_t> receivers;
   std::vector<VertexRange> gather_work;  // the receivers' vertices in work items (shoot.cpp)
+  std::vector<uint32_t> unhidden;        // the triangles culling left to a shot (shoot.cpp)
   /// Per cluster shot often enough: its shadow-ray answers kept for its next shot
   /// (kept_rays.h), and the bytes they hold in all.
   std::unordered_map<int32_t, KeptRays> kept_rays;

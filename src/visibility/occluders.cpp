@@ -84,38 +84,45 @@ bool clip_ears(std::vector<Vec3> loop, const DVec3& normal, std::vector<std::arr
   return true;
 }
 
-// The triangles that replace region `tris`, or empty to keep its own.
-std::vector<std::array<Vec3, 3>> merged_region(const Hierarchy& h,
-                                               const std::vector<std::array<uint32_t, 3>>& v,
-                                               const std::vector<uint32_t>& tris) {
+// Region `tris` as triangles that cover exactly its surface without overlapping: its own one or
+// two, or its single loop's ear clipping (checked to cover the same area: no hole, fold or
+// overlap the loop alone would miss); nothing when its corners are not in one plane or it has
+// more than two triangles and no such loop.
+std::optional<FlatRegion> region_surface(const Hierarchy& h,
+                                         const std::vector<std::array<uint32_t, 3>>& v,
+                                         const std::vector<uint32_t>& tris) {
   const Triangles& t = h.triangles;
-  if (tris.size() < 3) return {};
   DVec3 normal(0.0);
   double area = 0.0;
   for (uint32_t i : tris) {
     normal += DVec3(t.normal[i]) * double(t.area[i]);
     area += double(t.area[i]);
   }
-  if (!(glm::length(normal) > 0.0)) return {};
+  if (!(glm::length(normal) > 0.0)) return std::nullopt;
   normal = glm::normalize(normal);
   // Every corner in one plane, within the distance below which the backends may disagree anyway.
   const DVec3 origin(t.corners[tris[0]][0]);
   const double tolerance = ambiguity_limit(h);
   for (uint32_t i : tris)
     for (const Vec3& p : t.corners[i])
-      if (std::abs(glm::dot(DVec3(p) - origin, normal)) > tolerance) return {};
+      if (std::abs(glm::dot(DVec3(p) - origin, normal)) > tolerance) return std::nullopt;
+  FlatRegion r;
+  r.normal = Vec3(normal), r.point = Vec3(origin), r.area = float(area);
+  r.object = t.object[tris[0]], r.own_triangles = uint32_t(tris.size());
+  if (tris.size() < 3) {
+    // One triangle, or two on either side of their shared edge: they cannot overlap.
+    for (uint32_t i : tris) r.triangles.push_back(t.corners[i]);
+    return r;
+  }
   std::vector<Vec3> ea, eb;
   outline(boundary_edges(t, v, tris), tolerance, ea, eb);
   const std::vector<Vec3> loop = single_loop(ea, eb);
-  if (loop.empty()) return {};
-  std::vector<std::array<Vec3, 3>> out;
-  if (!clip_ears(loop, normal, out) || out.size() >= tris.size()) return {};
-  // The same area: no hole, fold or overlap the loop alone would miss.
+  if (loop.empty() || !clip_ears(loop, normal, r.triangles)) return std::nullopt;
   double merged = 0.0;
-  for (const auto& c : out)
+  for (const auto& c : r.triangles)
     merged += 0.5 * glm::length(glm::cross(DVec3(c[1]) - DVec3(c[0]), DVec3(c[2]) - DVec3(c[0])));
-  if (!(std::abs(merged - area) <= 1e-5 * area)) return {};
-  return out;
+  if (!(std::abs(merged - area) <= 1e-5 * area)) return std::nullopt;
+  return r;
 }
 
 }  // namespace
@@ -136,8 +143,10 @@ std::optional<Hierarchy> merge_flat_regions(const Hierarchy& h) {
   std::vector<uint32_t> tris;
   for (size_t r = 0; r + 1 < starts.size(); ++r) {
     tris.assign(flat.begin() + starts[r], flat.begin() + starts[r + 1]);
-    std::vector<std::array<Vec3, 3>> out = merged_region(h, v, tris);
-    if (out.empty()) continue;
+    if (tris.size() < 3) continue;
+    std::optional<FlatRegion> surface = region_surface(h, v, tris);
+    if (!surface || surface->triangles.size() >= tris.size()) continue;
+    std::vector<std::array<Vec3, 3>> out = std::move(surface->triangles);
     for (uint32_t i : tris) merged_into[i] = int32_t(replacement.size());
     lowest.push_back(tris.front());
     replacement.push_back(std::move(out));
@@ -180,6 +189,19 @@ std::optional<Hierarchy> merge_flat_regions(const Hierarchy& h) {
     }
   }
   return m;
+}
+
+std::vector<FlatRegion> flat_regions(const Hierarchy& h) {
+  const Regions found = find_regions(h.triangles, kPlanarCos);
+  std::vector<FlatRegion> out;
+  std::vector<uint32_t> tris;
+  for (size_t r = 0; r < found.size(); ++r) {
+    tris.assign(found.triangles.begin() + found.first[r],
+                found.triangles.begin() + found.first[r + 1]);
+    std::optional<FlatRegion> surface = region_surface(h, found.corners, tris);
+    if (surface) out.push_back(std::move(*surface));
+  }
+  return out;
 }
 
 }  // namespace rad
