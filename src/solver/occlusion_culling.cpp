@@ -354,11 +354,21 @@ struct ShotOccluders {
 
   // Whether one of the occluders in `mask` hides the box; those that can hide nothing inside
   // it are taken out of the mask.
-  bool hidden(const Aabb& box, uint32_t& mask) const {
-    for (uint32_t m = mask; m != 0; m &= m - 1) {
+  // `last`, the one that hid the last box hidden (near it, most likely to hide this one), is
+  // tried first, and set.
+  bool hidden(const Aabb& box, uint32_t& mask, int& last) const {
+    if (last >= 0 && (mask >> last & 1u)) {
+      const Cover c = covers(chosen[size_t(last)], box, margin);
+      if (c == Cover::Hidden) return true;
+      if (c == Cover::Never) mask &= ~(uint32_t(1) << last);
+    }
+    for (uint32_t m = mask & ~(last >= 0 ? uint32_t(1) << last : 0u); m != 0; m &= m - 1) {
       const int k = std::countr_zero(m);
       const Cover c = covers(chosen[size_t(k)], box, margin);
-      if (c == Cover::Hidden) return true;
+      if (c == Cover::Hidden) {
+        last = k;
+        return true;
+      }
       if (c == Cover::Never) mask &= ~(uint32_t(1) << k);
     }
     return false;
@@ -515,7 +525,8 @@ ShotOccluders choose_occluders(const OcclusionCulling& c, const ShotSource& src)
   for (size_t k = 0; k < keep && so.chosen.size() < kOccluders; ++k) {
     const Occluder& o = c.occluders[scored[k].second];
     uint32_t all = so.every();
-    if (so.hidden(o.box, all)) continue;  // hidden itself: it hides nothing more
+    int last = -1;
+    if (so.hidden(o.box, all, last)) continue;  // hidden itself: it hides nothing more
     so.add(o, glm::dot(centre - o.origin, o.normal) > 0.0 ? 1.0f : -1.0f);
   }
   return so;
@@ -534,6 +545,7 @@ void walk(const OcclusionCulling& c, const ShotSource& src, const ShotOccluders&
   // room for the rounding of either test: a box nearly in the plane is left to may_receive).
   const float front = 1e-6f * src.extent - so.margin;
   stack.assign(1, start);
+  int last = -1;
   while (!stack.empty()) {
     Visit v = stack.back();
     stack.pop_back();
@@ -542,7 +554,7 @@ void walk(const OcclusionCulling& c, const ShotSource& src, const ShotOccluders&
                               glm::dot(b.extent() * 0.5f, glm::abs(src.axis)) <=
                           front)
       continue;
-    if (v.mask != 0 && tree.cullable[v.node] && so.hidden(b, v.mask)) continue;
+    if (v.mask != 0 && tree.cullable[v.node] && so.hidden(b, v.mask, last)) continue;
     if (tree.leaf(v.node)) {
       const uint32_t first = tree.first[v.node];
       out.insert(out.end(), tree.order.begin() + first,

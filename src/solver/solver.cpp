@@ -128,6 +128,15 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
     unshot[i] = e.unshot;
   };
   tbb::parallel_for(size_t(0), receivers.size(), [&](size_t i) {
+    // A receiver that gained nothing (every ray blocked: most of those behind a building's
+    // walls that culling could not prove hidden) holds what it held and needs no more refining
+    // than after its last change.
+    const std::vector<VertexState>& vs = s.vertex_states[receivers[i]];
+    if (std::all_of(vs.begin(), vs.end(),
+                    [](const VertexState& v) { return v.shot == Vec3(0.0f); })) {
+      unshot[i] = s.unshot_energy[receivers[i]];
+      return;
+    }
     count(i);
     refining[i] = needs_refinement(s, receivers[i]);
   });
