@@ -193,12 +193,8 @@ Occluder make_occluder(const std::vector<FlatRegion>& regions, const std::vector
     if (!seen) distinct.push_back(d);
     if (distinct.size() == 16) break;
   }
-  directions = distinct;
   double best = std::numeric_limits<double>::infinity();
-  for (DVec3 u : directions) {
-    u -= o.normal * glm::dot(u, o.normal);
-    if (!(glm::length(u) > 0.0)) continue;
-    u = glm::normalize(u);
+  for (const DVec3& u : distinct) {
     const DVec3 w = glm::cross(o.normal, u);
     DVec2 lo(std::numeric_limits<double>::infinity()), hi(-lo);
     for (const Vec3& p : points) {
