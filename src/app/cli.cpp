@@ -103,8 +103,8 @@ struct Solving {
                    "the scene's radiosity scale (emitted power / total area)")
         ->capture_default_str();
     app.add_option("--intensity-cut", o.intensity_cut,
-                   "No shadow rays when a vertex's unoccluded gain is below this fraction of the "
-                   "radiosity scale")
+                   "One shadow ray instead of one per sample when a vertex's unoccluded gain is "
+                   "below this fraction of the radiosity scale")
         ->capture_default_str();
     app.add_option("--converge", o.converge,
                    "Stop when unshot energy <= this fraction of the emitted energy")

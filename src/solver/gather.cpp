@@ -241,7 +241,19 @@ Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroi
 
   // Visibility of the active samples: traced, or all visible without shadows or below the cut.
   const bool cut = max_component(glm::abs(unoccluded * scale)) < st.cut;  // |.|: negative edits
-  if (st.shadows && cut) scratch.stats.intensity_cuts += na;
+  if (st.shadows && cut && na > 0) {
+    // Below the cut one ray, to the sample that weighs most, stands for all: a gain taken
+    // unoccluded would go through walls, and in a building many small shots add up such gains
+    // everywhere (measured: +1.5% on the 16-room building, and more energy left to shoot).
+    scratch.stats.intensity_cuts += na - 1;
+    size_t best = 0;
+    for (size_t j = 1; j < na; ++j)
+      if (k[scratch.active[j]] > k[scratch.active[best]]) best = j;
+    const uint32_t one = uint32_t(best);
+    uint8_t blocked = 0;
+    trace_fan(x, n, src, &one, 1, vis, st, scratch, &blocked);
+    if (blocked) return Vec3(0.0f);
+  }
   const bool traced = st.shadows && !cut && na > 0;
   if (traced) trace_active(x, n, src, na, vis, st, scratch, kept);
 

@@ -51,8 +51,9 @@ struct SolverOptions {
   /// otherwise never be seen (measured: the Cornell floor lit by its light alone came out 41%
   /// too dark with the bare 2-triangle floor).
   float max_size = 0.0f;
-  /// Intensity cut: no shadow rays for a vertex whose unoccluded gain from the shot is below
-  /// this fraction of the radiosity scale (its gain is then taken unoccluded).
+  /// Intensity cut: one shadow ray instead of one per sample for a vertex whose unoccluded gain
+  /// from the shot is below this fraction of the radiosity scale (to the sample that weighs
+  /// most: the gain is the unoccluded one if it is clear, else 0).
   float intensity_cut = 1e-4f;
   /// Stop when unshot energy <= converge x emitted energy.
   double converge = 1e-3;
@@ -68,7 +69,7 @@ struct SolverOptions {
   bool overshoot = true;
   /// Occlusion culling (occlusion_culling.h): receivers that a flat occluder hides from a source
   /// get no shadow rays and no gain. The same result, but for gains under the intensity cut,
-  /// which are otherwise taken unoccluded, through the walls.
+  /// which one ray decides and might let through a gap.
   bool occlusion_culling = true;
   /// Memory for shadow-ray answers kept between shots of the same cluster (kept_rays.h); 0: none.
   size_t kept_rays_bytes = size_t(128) << 20;

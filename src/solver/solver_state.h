@@ -24,7 +24,7 @@ namespace rad {
 /// Counters of a solve, summed over shots (per-thread during a shot, combined after it).
 struct SolverStats {
   VisibilityStats rays;
-  uint64_t intensity_cuts = 0;  // shadow rays skipped by the intensity cut
+  uint64_t intensity_cuts = 0;  // shadow rays skipped by the intensity cut (all but one)
   uint64_t kept_answers = 0;    // shadow rays not traced again: answer kept (kept_rays.h)
   uint64_t culled = 0;          // vertex evaluations skipped: source behind or facing away
   uint64_t hidden =

@@ -71,9 +71,44 @@ TEST(Gather, IntensityCutSkipsRaysAndCountsThem) {
   g.cut = 1e9f;
   const uint64_t rays_before = sc.stats.rays.rays;
   const Vec3 cut = gather_from_source(x, {0, 0, 1}, x, src, *c.vis, g, sc);
-  EXPECT_EQ(sc.stats.rays.rays, rays_before) << "no shadow ray below the cut";
+  EXPECT_EQ(sc.stats.rays.rays, rays_before + 1) << "one shadow ray below the cut";
   EXPECT_GT(sc.stats.intensity_cuts, 0u);
   EXPECT_FLOAT_EQ(cut.x, traced.x) << "nothing blocks here, so the unoccluded gain is exact";
+}
+
+TEST(Gather, BelowTheIntensityCutAWallStillBlocks) {
+  // A light above a floor, and a slab between them that hides the floor point from all of it:
+  // below the cut the gain is not taken unoccluded (through the slab) but from one ray.
+  for (bool slab : {false, true}) {
+    SceneDescription d;
+    testing::add_quad(d, "floor", {-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0}, Vec3(0.5f),
+                      Vec3(0));
+    testing::add_quad(d, "light", {-0.5f, -0.5f, 2}, {-0.5f, 0.5f, 2}, {0.5f, 0.5f, 2},
+                      {0.5f, -0.5f, 2}, Vec3(0), Vec3(1));
+    if (slab) {
+      testing::add_quad(d, "slab", {-1, -1, 1}, {-1, 1, 1}, {1, 1, 1}, {1, -1, 1}, Vec3(0.5f),
+                        Vec3(0));
+    }
+    const Hierarchy h = build_hierarchy(d);
+    const auto vis = make_visibility_backend(BackendKind::Embree, h);
+    const SolverState s = make_solver_state(h, {});
+    const ShotSource src = make_shot_source(s, int32_t(s.clusters.cluster_of[2]));
+    GatherSettings g = gather_settings(s);
+    g.cut = 1e9f;
+    GatherScratch sc;
+    const Vec3 x(0.1f, 0.1f, 0);
+    const float gain =
+        gather_from_source(x, {0, 0, 1}, h.triangles.centroid(0), src, *vis, g, sc).x;
+    if (slab) {
+      EXPECT_EQ(gain, 0.0f) << "the unoccluded gain would pass through the slab";
+    } else {  // the exact form factor of the light's two triangles (unit unshot radiosity)
+      const Vec3 a(-0.5f, -0.5f, 2), b(-0.5f, 0.5f, 2), c(0.5f, 0.5f, 2), e(0.5f, -0.5f, 2);
+      const float exact = point_to_triangle_form_factor(x, {0, 0, 1}, a, b, c) +
+                          point_to_triangle_form_factor(x, {0, 0, 1}, a, c, e);
+      EXPECT_NEAR(gain, exact, 0.01f * exact);
+    }
+    EXPECT_EQ(sc.stats.rays.rays, 1u);
+  }
 }
 
 // The form factor of the gather (unit unshot radiosity, no shadows, no inset) against the
