@@ -9,6 +9,7 @@
 
 #include "hierarchy/triangle_adjacency.h"
 #include "solver/shot_source.h"
+#include "visibility/agreement.h"
 
 namespace rad {
 
@@ -79,25 +80,36 @@ double polygon_area(const DVec2* a, size_t n) {
   return 0.5 * std::abs(twice);
 }
 
-// Area of triangle `t` inside the rectangle [lo, hi] (Sutherland-Hodgman clipping).
-double area_in_rect(const std::array<DVec2, 3>& t, const DVec2& lo, const DVec2& hi) {
-  DVec2 a[8], b[8];
+// Area of triangle t inside the convex polygon c[0 .. m) (Sutherland-Hodgman: t clipped by each
+// edge of c in turn; either winding).
+double area_inside(const std::array<DVec2, 3>& t, const DVec2* c, size_t m) {
+  DVec2 a[16], b[16];
   size_t n = 3;
   for (size_t i = 0; i < 3; ++i) a[i] = t[i];
-  auto clip = [&](int axis, double bound, bool keep_below) {
-    size_t m = 0;
+  const double orient =
+      (c[1].x - c[0].x) * (c[2].y - c[0].y) - (c[2].x - c[0].x) * (c[1].y - c[0].y);
+  const double s = orient >= 0.0 ? 1.0 : -1.0;
+  for (size_t e = 0; e < m && n > 0; ++e) {
+    const DVec2 &p0 = c[e], &p1 = c[(e + 1) % m];
+    auto inside = [&](const DVec2& p) {
+      return s * ((p1.x - p0.x) * (p.y - p0.y) - (p1.y - p0.y) * (p.x - p0.x));
+    };
+    size_t k = 0;
     for (size_t i = 0; i < n; ++i) {
       const DVec2 &p = a[i], &q = a[(i + 1) % n];
-      const double dp = keep_below ? bound - p[axis] : p[axis] - bound;
-      const double dq = keep_below ? bound - q[axis] : q[axis] - bound;
-      if (dp >= 0.0) b[m++] = p;
-      if ((dp >= 0.0) != (dq >= 0.0)) b[m++] = p + (q - p) * (dp / (dp - dq));
+      const double dp = inside(p), dq = inside(q);
+      if (dp >= 0.0) b[k++] = p;
+      if ((dp >= 0.0) != (dq >= 0.0)) b[k++] = p + (q - p) * (dp / (dp - dq));
     }
-    n = m;
+    n = k;
     for (size_t i = 0; i < n; ++i) a[i] = b[i];
-  };
-  clip(0, lo.x, false), clip(0, hi.x, true), clip(1, lo.y, false), clip(1, hi.y, true);
+  }
   return polygon_area(a, n);
+}
+
+double area_in_rect(const std::array<DVec2, 3>& t, const DVec2& lo, const DVec2& hi) {
+  const DVec2 rect[4] = {lo, {hi.x, lo.y}, hi, {lo.x, hi.y}};
+  return area_inside(t, rect, 4);
 }
 
 // Whether triangle t holds the rectangle [lo, hi] (its four corners).
@@ -112,32 +124,6 @@ bool holds(const std::array<DVec2, 3>& t, const DVec2& lo, const DVec2& hi) {
     }
   }
   return orient != 0.0;
-}
-
-// Area where two triangles overlap (the first clipped by the second's edges).
-double overlap_area(const std::array<DVec2, 3>& t, const std::array<DVec2, 3>& u) {
-  DVec2 a[9], b[9];
-  size_t n = 3;
-  for (size_t i = 0; i < 3; ++i) a[i] = t[i];
-  const double orient =
-      (u[1].x - u[0].x) * (u[2].y - u[0].y) - (u[2].x - u[0].x) * (u[1].y - u[0].y);
-  const double s = orient >= 0.0 ? 1.0 : -1.0;
-  for (size_t e = 0; e < 3 && n > 0; ++e) {
-    const DVec2 &p0 = u[e], &p1 = u[(e + 1) % 3];
-    auto inside = [&](const DVec2& p) {
-      return s * ((p1.x - p0.x) * (p.y - p0.y) - (p1.y - p0.y) * (p.x - p0.x));
-    };
-    size_t m = 0;
-    for (size_t i = 0; i < n; ++i) {
-      const DVec2 &p = a[i], &q = a[(i + 1) % n];
-      const double dp = inside(p), dq = inside(q);
-      if (dp >= 0.0) b[m++] = p;
-      if ((dp >= 0.0) != (dq >= 0.0)) b[m++] = p + (q - p) * (dp / (dp - dq));
-    }
-    n = m;
-    for (size_t i = 0; i < n; ++i) a[i] = b[i];
-  }
-  return polygon_area(a, n);
 }
 
 std::array<DVec2, 3> flatten(const DVec3& origin, const DVec3& u, const DVec3& w,
@@ -278,7 +264,8 @@ enum class Cover { Hidden, Maybe, Never };
 // occluder's triangles, `margin` clear of their union's edges (Hidden); if not, whether some box
 // inside this one still may be hidden by it (Maybe) or none can (Never: no part of the box lies
 // beyond the plane, or the crossings miss the occluder's 2D box). In single precision: the margin
-// is far above its rounding on scene coordinates.
+// is far above the rounding of the crossings, except for corner pairs nearly parallel to the
+// plane, whose rays then pass within rounding of the occluder's edge (the backends' ambiguity).
 Cover covers(const ShotOccluder& so, const Aabb& box, float margin) {
   const Occluder& g = *so.occluder;
   const Lanes bd = corner_coordinates(box, margin, g.origin, g.normal) * so.side;
@@ -311,8 +298,9 @@ Cover covers(const ShotOccluder& so, const Aabb& box, float margin) {
   // A smaller box's crossings lie inside these.
   if (hi.x <= g.lo.x || hi.y <= g.lo.y || lo.x >= g.hi.x || lo.y >= g.hi.y) return Cover::Never;
   if (lo.x < g.lo.x || lo.y < g.lo.y || hi.x > g.hi.x || hi.y > g.hi.y) return Cover::Maybe;
-  // The cells the rectangle meets: hidden if every one is full (a real gap narrower than the
-  // margin passes no ray the backends agree on), never if none meets the occluder.
+  // The cells the rectangle meets: hidden if every one is full (fused pieces lie within the
+  // ambiguity distance of one plane, so no ray the backends agree on passes where they abut),
+  // never if none meets the occluder.
   const DVec2 cell = (g.hi - g.lo) / DVec2(g.columns, g.rows);
   auto index = [](double x, uint32_t n) {
     return uint32_t(std::clamp(std::floor(x), 0.0, double(n - 1)));
@@ -337,7 +325,9 @@ struct ShotOccluders {
   Aabb source;  // where its rays may end, before the margin
   float margin = 0.0f;
 
-  uint32_t every() const { return chosen.size() >= 32 ? ~0u : (uint32_t(1) << chosen.size()) - 1; }
+  uint32_t every() const {
+    return chosen.size() >= kOccluders ? ~0u : (uint32_t(1) << chosen.size()) - 1;
+  }
 
   void add(const Occluder& o, float side) {
     ShotOccluder x;
@@ -423,6 +413,7 @@ OcclusionCulling make_occlusion_culling(const Hierarchy& h, float shadow_offset)
     size[r] = uint32_t(regions[r].triangles.size());
   }
   const float gap = float(c.margin);
+  const double tolerance = ambiguity_limit(h);
   for (size_t i = 0; i < order.size(); ++i) {
     const uint32_t a = order[i];
     const DVec3 n(regions[a].normal);
@@ -438,6 +429,20 @@ OcclusionCulling make_occlusion_culling(const Hierarchy& h, float shadow_offset)
         continue;
       const uint32_t ra = root(parent, a), rb = root(parent, b);
       if (ra == rb || size[ra] + size[rb] > kMaxFused) continue;
+      // Every corner of both within the ambiguity distance of the plane the fused occluder will
+      // have (its lowest region's, which is the set's root): a slit between two pieces a step
+      // apart, or a ray past a tilted piece's edge, is then one the backends may disagree on.
+      const uint32_t keep = std::min(ra, rb);
+      const DVec3 kn(regions[keep].normal), kp(regions[keep].point);
+      bool flat = true;
+      for (const uint32_t set : {ra, rb}) {
+        for (uint32_t x : members[set]) {
+          for (const auto& t : regions[x].triangles) {
+            for (const Vec3& q : t) flat &= std::abs(glm::dot(DVec3(q) - kp, kn)) <= tolerance;
+          }
+        }
+      }
+      if (!flat) continue;
       // The two sets must not overlap (coincident duplicates would count twice).
       bool overlaps = false;
       for (uint32_t x : members[ra]) {
@@ -447,14 +452,15 @@ OcclusionCulling make_occlusion_culling(const Hierarchy& h, float shadow_offset)
             const auto fx = flatten(DVec3(regions[a].point), u, w, tx);
             for (const auto& ty : regions[y].triangles) {
               const auto fy = flatten(DVec3(regions[a].point), u, w, ty);
-              if (overlap_area(fx, fy) > 1e-7 * double(std::min(regions[x].area, regions[y].area)))
+              if (area_inside(fx, fy.data(), 3) >
+                  1e-7 * double(std::min(regions[x].area, regions[y].area)))
                 overlaps = true;
             }
           }
         }
       }
       if (overlaps) continue;
-      const uint32_t keep = std::min(ra, rb), gone = std::max(ra, rb);
+      const uint32_t gone = std::max(ra, rb);
       parent[gone] = keep;
       size[keep] += size[gone];
       members[keep].insert(members[keep].end(), members[gone].begin(), members[gone].end());

@@ -63,13 +63,14 @@ OcclusionCulling make_occlusion_culling(const Hierarchy& h, float shadow_offset)
 
 /// The triangles some of whose segments to `src` may be unblocked, in index order, into `out`:
 /// every triangle but those in a subtree of c.tree whose box is hidden. A box is hidden when
-/// every segment from the source's box to it crosses the union of a few flat occluders in one
-/// plane (Teller, Hanrahan, "Global visibility algorithms for illumination computations",
-/// SIGGRAPH 1993, find what a source sees through the cells and portals of a building; this is
-/// the cheaper conservative half: the crossings of the segments between the two boxes' corners
-/// bound the crossings of all segments between them, so one coverage test decides). The
-/// occluders are the flat regions nearest the source by solid angle that no other one already
-/// hides. Culling removes only gains that shadow rays would have made zero.
+/// every segment from the box of the source's ray ends to it crosses one occluder (Teller and
+/// Hanrahan, "Global visibility algorithms for illumination computations", SIGGRAPH 1993, find
+/// what a source sees through the cells and portals of a building; this is the cheaper
+/// conservative half: the crossings of the segments between the two boxes' corners bound the
+/// crossings of all segments between them, so one coverage test decides). The occluders are
+/// the 32 nearest the source by solid angle that no other one already hides. Culling removes gains
+/// that shadow rays to every sample would have made zero (a gain taken with fewer rays, under the
+/// intensity cut or from a sliver of the source no sample lies on, may have come through).
 void unhidden_triangles(const OcclusionCulling& c, const ShotSource& src,
                         std::vector<uint32_t>& out);
 

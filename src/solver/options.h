@@ -68,8 +68,9 @@ struct SolverOptions {
   /// most to shoot, share included (solver.cpp).
   bool overshoot = true;
   /// Occlusion culling (occlusion_culling.h): receivers that a flat occluder hides from a source
-  /// get no shadow rays and no gain. The same result, but for gains under the intensity cut,
-  /// which one ray decides and might let through a gap.
+  /// get no shadow rays and no gain. The same result but for the gains taken with fewer rays
+  /// than samples: under the intensity cut (one ray) and where no sample faces the receiver
+  /// (none: the visible sliver of a source).
   bool occlusion_culling = true;
   /// Memory for shadow-ray answers kept between shots of the same cluster (kept_rays.h); 0: none.
   size_t kept_rays_bytes = size_t(128) << 20;

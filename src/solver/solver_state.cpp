@@ -317,8 +317,8 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   const double side = double(max_m) * double(s.max_size);
   s.clusters = make_clusters(h, side * side);
   s.shared = find_shared_vertices(s.mesh, s.clusters);
-  // Occluders of less than an initial element's square hide little and each costs every shot.
-  if (options.shadows) s.culling = make_occlusion_culling(h, s.shadow_offset);
+  if (options.shadows && options.occlusion_culling)
+    s.culling = make_occlusion_culling(h, s.shadow_offset);
   update_unshot_totals(s);
   s.barycentric_grids.resize(size_t(4 * max_m) + 1);
   for (int q = 1; q <= 4 * max_m; ++q)

@@ -27,8 +27,8 @@ struct SolverStats {
   uint64_t intensity_cuts = 0;  // shadow rays skipped by the intensity cut (all but one)
   uint64_t kept_answers = 0;    // shadow rays not traced again: answer kept (kept_rays.h)
   uint64_t culled = 0;          // vertex evaluations skipped: source behind or facing away
-  uint64_t hidden =
-      0;  // receiving triangles skipped whole: hidden by an occluder, or behind the source
+  /// Receiving triangles a shot skipped whole: hidden by an occluder, or behind the source.
+  uint64_t hidden = 0;
   uint64_t vertex_evaluations = 0;  // vertex-to-source gathers computed
   uint64_t subdivisions = 0;        // elements split into four
   uint64_t exact_midpoints = 0;     // new vertices whose shot was computed

@@ -108,7 +108,7 @@ std::optional<FlatRegion> region_surface(const Hierarchy& h,
       if (std::abs(glm::dot(DVec3(p) - origin, normal)) > tolerance) return std::nullopt;
   FlatRegion r;
   r.normal = Vec3(normal), r.point = Vec3(origin), r.area = float(area);
-  r.object = t.object[tris[0]], r.own_triangles = uint32_t(tris.size());
+  r.object = t.object[tris[0]];
   if (tris.size() < 3) {
     // One triangle, or two on either side of their shared edge: they cannot overlap.
     for (uint32_t i : tris) r.triangles.push_back(t.corners[i]);

@@ -25,8 +25,7 @@ struct FlatRegion {
   Vec3 normal{0.0f};  // unit, the area-weighted mean of its triangles'
   Vec3 point{0.0f};   // a corner: the plane is dot(normal, x - point) = 0
   float area = 0.0f;
-  int32_t object = -1;         // its Pure
-  uint32_t own_triangles = 0;  // the hierarchy triangles it was made of
+  int32_t object = -1;  // its Pure
 };
 
 /// Every flat region of the hierarchy whose corners lie in one plane (to the scenes' ambiguity
