@@ -59,26 +59,30 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
   receivers.clear();
   // With a Lights list only the triangles it names are looked at; under MPI, only this rank's.
   const int32_t influence = shooter_influence(s, src);
-  if (influence < 0 && !s.culling.empty() && s.options.occlusion_culling) {
-    // Without a list, the triangles not hidden behind a flat occluder (occlusion_culling.h).
-    std::vector<uint32_t>& unhidden = s.unhidden;
-    unhidden_triangles(s.culling, src, unhidden);
-    s.stats.hidden += tris.size() - unhidden.size();
-    tbb::parallel_for(size_t(0), unhidden.size(), [&](size_t i) {
-      const uint32_t p = unhidden[i];
+  // The candidates: a Lights list's ranges, or the triangles not hidden behind a flat occluder
+  // (occlusion_culling.h; built only when culling is on), or all.
+  std::vector<TriangleRange> ranges{{0, uint32_t(tris.size())}};
+  const std::vector<uint32_t>* listed = nullptr;
+  if (influence >= 0) {
+    ranges = s.hierarchy->objects[size_t(influence)].lit;
+  } else if (!s.culling.empty()) {
+    unhidden_triangles(s.culling, src, s.unhidden);
+    s.stats.hidden += tris.size() - s.unhidden.size();
+    listed = &s.unhidden;
+  }
+  auto consider = [&](size_t n, auto&& triangle) {
+    tbb::parallel_for(size_t(0), n, [&](size_t i) {
+      const size_t p = triangle(i);
       received[p] = s.owns(p) && may_receive(s, p, src);
     });
-    for (uint32_t p : unhidden)
-      if (received[p]) receivers.push_back(p);
+    for (size_t i = 0; i < n; ++i)
+      if (received[triangle(i)]) receivers.push_back(uint32_t(triangle(i)));
+  };
+  if (listed) {
+    consider(listed->size(), [&](size_t i) { return size_t((*listed)[i]); });
   } else {
-    const std::vector<TriangleRange> all{{0, uint32_t(tris.size())}};
-    for (const TriangleRange& r :
-         influence < 0 ? all : s.hierarchy->objects[size_t(influence)].lit) {
-      tbb::parallel_for(size_t(r.first), size_t(r.first) + r.count,
-                        [&](size_t p) { received[p] = s.owns(p) && may_receive(s, p, src); });
-      for (size_t p = r.first; p < size_t(r.first) + r.count; ++p)
-        if (received[p]) receivers.push_back(uint32_t(p));
-    }
+    for (const TriangleRange& r : ranges)
+      consider(r.count, [&](size_t i) { return size_t(r.first) + i; });
   }
   // Work items: a polygon's vertices, or 64 of them for a finely subdivided one, so its
   // vertices spread across threads too.

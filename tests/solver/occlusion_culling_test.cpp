@@ -71,7 +71,7 @@ TEST(OcclusionCulling, NoRayReachesATriangleItHidesFromAnySource) {
   EXPECT_GT(checked, 0u);
 }
 
-TEST(OcclusionCulling, ALightBehindAWallWithADoorSeesThroughTheDoorOnly) {
+TEST(OcclusionCulling, ALightSeesPartOfTheRoomsBeyondItsDoorsAndLittleOfTheRoomAcrossTheCorner) {
   const Hierarchy h = four_rooms();
   const SolverState s = make_solver_state(h, SolverOptions{});
   // The first emitting cluster: room 0's lamp.
