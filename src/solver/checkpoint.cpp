@@ -22,7 +22,7 @@ namespace {
 constexpr char kMagic[8] = {'R', 'A', 'D', 'C', 'K', 'P', 'T', '\n'};
 // 2: vertices shared by copy; 3: kept shadow-ray answers counted; 4: vertex states apart from
 // the positions
-constexpr uint32_t kFormat = 4;
+constexpr uint32_t kFormat = 5;
 constexpr size_t kHeader = sizeof kMagic + sizeof(uint32_t) + 3 * sizeof(uint64_t);
 
 struct HistoryRecord {
@@ -75,6 +75,8 @@ void write_checkpoint(const std::string& path, const SolverState& s, uint64_t fi
   w.vec(history);
   w.pod(uint64_t(s.shot_log.size()));
   for (const ShotSource& src : s.shot_log) write_shot(w, src);
+  w.vec(s.cluster_cost);
+  w.pod(s.cost_total);
 
   const uint64_t checksum = Fingerprint().bytes(w.out.data(), w.out.size()).value();
   AtomicFile f(path);
@@ -158,6 +160,10 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   const auto logged = r.pod<uint64_t>();
   std::vector<ShotSource> log;
   for (uint64_t i = 0; i < logged; ++i) log.push_back(read_shot(r, s.clusters.size()));
+  std::vector<double> cluster_cost;
+  r.vec(cluster_cost);
+  const auto cost_total = r.pod<double>();
+  if (cluster_cost.size() > s.clusters.size()) r.fail("more shot costs than clusters");
   if (!r.done()) r.fail("trailing bytes");
   if (shots < 0 || uint64_t(shots) != logged) r.fail("shot count differs from the shot log");
 
@@ -173,6 +179,8 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   s.reference_energy = emitted;  // a checkpoint is of a run without edits
   s.history = std::move(history);
   s.shot_log = std::move(log);
+  s.cluster_cost = std::move(cluster_cost);
+  s.cost_total = cost_total;
   update_unshot_totals(s);
 }
 

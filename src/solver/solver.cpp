@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <span>
 #include <tuple>
 
 #include "solver/distribute.h"
@@ -14,16 +15,35 @@
 
 namespace rad {
 
+namespace {
+
+// What a shot costs besides gathering at its receivers' vertices (choosing it, freezing its
+// source, culling), in vertices: a shot that reaches nothing is not free.
+constexpr double kShotOverhead = 1000.0;
+
+// The vertices cluster c's next shot is expected to gather, overhead included.
+double expected_cost(const SolverState& s, size_t c) {
+  const double known = c < s.cluster_cost.size() ? s.cluster_cost[c] : 0.0;
+  const double mean = s.shots > 0 ? s.cost_total / double(s.shots) : 0.0;
+  return (known > 0.0 ? known : mean) + kShotOverhead;
+}
+
+}  // namespace
+
 std::optional<Shooter> choose_shooter(const SolverState& s) {
-  // The largest of the clusters' energies, kept current shot by shot for the clusters a shot
-  // changed (ties: the lowest index). A shot without Lights lists changes nearly every cluster,
-  // so a heap would be rebuilt each time; one pass over a double a cluster costs less (with
-  // overshooting, one parallel pass over the polygons). Under MPI
-  // each rank looks at its own clusters (the others' are 0), and one reduction picks among them.
+  // The largest of the clusters' energies per cost, the energies kept current shot by shot for
+  // the clusters a shot changed (ties: the lowest index). A shot without Lights lists changes
+  // nearly every cluster, so a heap would be rebuilt each time; one pass over a double a cluster
+  // costs less (with overshooting, one parallel pass over the polygons). Under MPI each rank
+  // looks at its own clusters (the others' are 0), and one reduction picks among them.
+  // Per cost: what a shot removes of the unshot energy is about its energy whatever it costs,
+  // so the most energy per second goes first. A building's floor sees the rooms along
+  // its doors and gathers at ten times the vertices of a chair's shot; it waits until it holds
+  // ten times the energy, and shoots it in one go.
   const std::vector<double>& energy = s.cluster_energy;
   const size_t nc = energy.size();
   int32_t best = -1;
-  double best_energy = 0.0;
+  double best_score = 0.0;
   if (s.options.overshoot) {
     // With overshooting a cluster shoots its unshot energy plus its share of the ambient: what
     // it would shoot now, not what it holds, says which goes first. (By what it holds, one that
@@ -33,36 +53,43 @@ std::optional<Shooter> choose_shooter(const SolverState& s) {
     const double amb = ambient_estimate(s);
     const Triangles& tris = s.hierarchy->triangles;
     const Clusters& k = s.clusters;
-    using Best = std::pair<double, int32_t>;  // (energy, -index): the larger wins, ties lowest
+    auto shooting = [&](size_t c) {
+      double e = 0.0;
+      for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) {
+        const uint32_t p = k.polygons[j];
+        const double rho = mean_component(s.material_of(p).reflectance);
+        // The share changes the sum; what cancels between the channels stays to shoot.
+        const UnshotEnergy& u = s.unshot_energy[p];
+        e += std::abs(u.sum + rho * amb * double(tris.area[p])) + u.magnitude - std::abs(u.sum);
+      }
+      return e;
+    };
+    using Best = std::pair<double, int32_t>;  // (score, -index): the larger wins, ties lowest
     const Best found = tbb::parallel_reduce(
         tbb::blocked_range<size_t>(0, nc, 256), Best{0.0, 1},
         [&](const tbb::blocked_range<size_t>& r, Best b) {
           for (size_t c = r.begin(); c != r.end(); ++c) {
             if (!s.owns_cluster(c)) continue;
-            double e = 0.0;
-            for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) {
-              const uint32_t p = k.polygons[j];
-              const double rho = mean_component(s.material_of(p).reflectance);
-              // The share changes the sum; what cancels between the channels stays to shoot.
-              const UnshotEnergy& u = s.unshot_energy[p];
-              e += std::abs(u.sum + rho * amb * double(tris.area[p])) + u.magnitude -
-                   std::abs(u.sum);
-            }
+            const double e = shooting(c);
             if (!(e > 0.0)) continue;  // NaN too: it would win or lose by its index alone
-            b = std::max(b, Best{e, -int32_t(c)});
+            b = std::max(b, Best{e / expected_cost(s, c), -int32_t(c)});
           }
           return b;
         },
         [](const Best& a, const Best& b) { return std::max(a, b); });
-    if (found.first > 0.0) best_energy = found.first, best = -found.second;
-  } else {
-    for (size_t c = 0; c < nc; ++c) {
-      if (energy[c] > best_energy) best_energy = energy[c], best = int32_t(c);
-    }
+    if (found.first > 0.0) best_score = found.first, best = -found.second;
+    if (s.ranks) std::tie(best_score, best) = s.ranks->max_location(best_score, best);
+    if (best < 0 || !(best_score > 0.0)) return std::nullopt;
+    // The owner freezes it (the others' unshot energies of it are 0).
+    return Shooter{best, s.owns_cluster(size_t(best)) ? shooting(size_t(best)) : 0.0};
   }
-  if (s.ranks) std::tie(best_energy, best) = s.ranks->max_location(best_energy, best);
-  if (best < 0 || !(best_energy > 0.0)) return std::nullopt;
-  return Shooter{best, best_energy};
+  for (size_t c = 0; c < nc; ++c) {
+    const double score = energy[c] / expected_cost(s, c);
+    if (score > best_score) best_score = score, best = int32_t(c);
+  }
+  if (s.ranks) std::tie(best_score, best) = s.ranks->max_location(best_score, best);
+  if (best < 0 || !(best_score > 0.0)) return std::nullopt;
+  return Shooter{best, energy[size_t(best)]};
 }
 
 namespace {
@@ -154,6 +181,14 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   const auto t2 = std::chrono::steady_clock::now();
   s.stats.shoot_seconds += std::chrono::duration<double>(t1 - t0).count();
   s.stats.refine_seconds += std::chrono::duration<double>(t2 - t1).count();
+
+  // What this shot cost, for the next choice of shooter (over the ranks: the same on each).
+  int64_t gathered = 0;
+  for (uint32_t p : receivers) gathered += int64_t(s.vertex_states[p].size());
+  if (s.ranks) s.ranks->sum(std::span<int64_t>(&gathered, 1));
+  s.cluster_cost.resize(s.clusters.size(), 0.0);
+  s.cluster_cost[c] = double(gathered);
+  s.cost_total += double(gathered);
 
   ++s.shots;
   ShotRecord r{s.shots, shooter->cluster, s.stats.shoot_seconds + s.stats.refine_seconds,

@@ -31,5 +31,38 @@ TEST(Solver, OvershootingKeepsTheUnshotEnergyNearShootingWithout) {
   EXPECT_LE(over, 1.25 * plain) << "the overshoot held by the clusters grows";
 }
 
+TEST(Solver, AShooterWhoseShotsGatherAtMoreVerticesWaitsForMoreEnergy) {
+  const Hierarchy h = build_hierarchy(generate_scene(SceneKind::FurnishedRoom, 1000, 1));
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  SolverState s = make_solver_state(h, SolverOptions{});
+  for (int i = 0; i < 5; ++i) ASSERT_TRUE(step(s, *vis));
+  // Each shot's cost is kept: the vertices of the polygons that received it.
+  ASSERT_EQ(s.cluster_cost.size(), s.clusters.size());
+  EXPECT_GT(s.cluster_cost[size_t(s.history.back().source)], 0.0);
+  // Every cluster as costly: the most energy goes first.
+  const std::vector<double> same(s.clusters.size(), 1000.0);
+  s.cluster_cost = same;
+  const std::optional<Shooter> most = choose_shooter(s);
+  ASSERT_TRUE(most);
+  // Another cluster that barely costs anything goes before it, with less energy.
+  std::optional<Shooter> cheap;
+  for (size_t c = 0; c < s.clusters.size() && !cheap; ++c) {
+    if (int32_t(c) == most->cluster) continue;
+    s.cluster_cost = same;
+    s.cluster_cost[c] = 1.0;
+    const std::optional<Shooter> x = choose_shooter(s);
+    ASSERT_TRUE(x);
+    if (x->cluster == int32_t(c)) cheap = x;
+  }
+  ASSERT_TRUE(cheap) << "no cheap cluster went first";
+  EXPECT_LT(cheap->energy, most->energy);
+  // The one with the most energy, its shots dear, waits.
+  s.cluster_cost = same;
+  s.cluster_cost[size_t(most->cluster)] = 1e12;
+  const std::optional<Shooter> x = choose_shooter(s);
+  ASSERT_TRUE(x);
+  EXPECT_NE(x->cluster, most->cluster);
+}
+
 }  // namespace
 }  // namespace rad
