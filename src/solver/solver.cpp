@@ -4,6 +4,7 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <span>
@@ -21,12 +22,40 @@ namespace {
 // source, culling), in vertices: a shot that reaches nothing is not free.
 constexpr double kShotOverhead = 1000.0;
 
-// The vertices cluster c's next shot is expected to gather, overhead included.
-double expected_cost(const SolverState& s, size_t c) {
-  const double known = c < s.cluster_cost.size() ? s.cluster_cost[c] : 0.0;
-  const double mean = s.shots > 0 ? s.cost_total / double(s.shots) : 0.0;
-  return (known > 0.0 ? known : mean) + kShotOverhead;
+// Clusters by area, a bin per power of 2: alike in size, alike in what they see (a building's
+// floors, its chairs' seats).
+size_t area_bin(float area) {
+  int e = 0;
+  std::frexp(double(area), &e);
+  return size_t(std::clamp(e + 32, 0, 63));
 }
+
+// What a shot of each cluster is expected to cost, in vertices gathered: its last shot's, or
+// for one not shot yet, the mean of the last shots of the clusters of its size shot so far (else
+// of every shot so far), and what every shot costs besides.
+struct ExpectedCost {
+  const SolverState& s;
+  std::array<double, 64> bin_mean{};
+  double mean = 0.0;
+
+  explicit ExpectedCost(const SolverState& state) : s(state) {
+    std::array<double, 64> sum{}, count{};
+    for (size_t c = 0; c < s.cluster_cost.size(); ++c) {
+      if (!(s.cluster_cost[c] > 0.0)) continue;
+      const size_t b = area_bin(s.clusters.area[c]);
+      sum[b] += s.cluster_cost[c], count[b] += 1.0;
+    }
+    for (size_t b = 0; b < 64; ++b) bin_mean[b] = count[b] > 0.0 ? sum[b] / count[b] : 0.0;
+    mean = s.shots > 0 ? s.cost_total / double(s.shots) : 0.0;
+  }
+
+  double operator()(size_t c) const {
+    double known = c < s.cluster_cost.size() ? s.cluster_cost[c] : 0.0;
+    if (!(known > 0.0)) known = bin_mean[area_bin(s.clusters.area[c])];
+    if (!(known > 0.0)) known = mean;
+    return known + kShotOverhead;
+  }
+};
 
 }  // namespace
 
@@ -51,6 +80,7 @@ std::optional<Shooter> choose_shooter(const SolverState& s) {
     // held overshoot of all of them grows: a furnished room ended with 42% of its energy
     // unshot after 900 shots.)
     const double amb = ambient_estimate(s);
+    const ExpectedCost expected_cost(s);
     const Triangles& tris = s.hierarchy->triangles;
     const Clusters& k = s.clusters;
     auto shooting = [&](size_t c) {
@@ -72,7 +102,7 @@ std::optional<Shooter> choose_shooter(const SolverState& s) {
             if (!s.owns_cluster(c)) continue;
             const double e = shooting(c);
             if (!(e > 0.0)) continue;  // NaN too: it would win or lose by its index alone
-            b = std::max(b, Best{e / expected_cost(s, c), -int32_t(c)});
+            b = std::max(b, Best{e / expected_cost(c), -int32_t(c)});
           }
           return b;
         },
@@ -83,8 +113,9 @@ std::optional<Shooter> choose_shooter(const SolverState& s) {
     // The owner freezes it (the others' unshot energies of it are 0).
     return Shooter{best, s.owns_cluster(size_t(best)) ? shooting(size_t(best)) : 0.0};
   }
+  const ExpectedCost expected_cost(s);
   for (size_t c = 0; c < nc; ++c) {
-    const double score = energy[c] / expected_cost(s, c);
+    const double score = energy[c] / expected_cost(c);
     if (score > best_score) best_score = score, best = int32_t(c);
   }
   if (s.ranks) std::tie(best_score, best) = s.ranks->max_location(best_score, best);

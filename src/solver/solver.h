@@ -18,8 +18,9 @@ struct Shooter {
 
 /// The cluster with the most unshot energy (with overshooting: the most to shoot, its unshot
 /// energy plus its share of the ambient term) per vertex its shot is expected to gather (its
-/// last shot's, or the mean over the shots so far); ties go to the lowest index. None when
-/// nothing is left to shoot. Collective under MPI.
+/// last shot's; else the mean of the last shots of clusters of about its area; else of all shots
+/// so far); ties go to the lowest index. None when nothing is left to shoot. Collective under
+/// MPI.
 std::optional<Shooter> choose_shooter(const SolverState& s);
 
 /// One shot: choose the shooter, shoot it to every receiving vertex, refine the receivers,
