@@ -67,8 +67,8 @@ std::optional<Shooter> choose_shooter(const SolverState& s) {
   // looks at its own clusters (the others' are 0), and one reduction picks among them.
   // Per cost: what a shot removes of the unshot energy is about its energy whatever it costs,
   // so the most energy per second goes first. A building's floor sees the rooms along
-  // its doors and gathers at ten times the vertices of a chair's shot; it waits until it holds
-  // ten times the energy, and shoots it in one go.
+  // its doors and gathers at seven times the vertices of a chair's shot; it waits until it holds
+  // seven times the energy, and shoots it in one go.
   const std::vector<double>& energy = s.cluster_energy;
   const size_t nc = energy.size();
   int32_t best = -1;
