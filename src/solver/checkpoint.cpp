@@ -76,7 +76,6 @@ void write_checkpoint(const std::string& path, const SolverState& s, uint64_t fi
   w.pod(uint64_t(s.shot_log.size()));
   for (const ShotSource& src : s.shot_log) write_shot(w, src);
   w.vec(s.cluster_cost);
-  w.pod(s.cost_total);
 
   const uint64_t checksum = Fingerprint().bytes(w.out.data(), w.out.size()).value();
   AtomicFile f(path);
@@ -162,7 +161,6 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   for (uint64_t i = 0; i < logged; ++i) log.push_back(read_shot(r, s.clusters.size()));
   std::vector<double> cluster_cost;
   r.vec(cluster_cost);
-  const auto cost_total = r.pod<double>();
   if (cluster_cost.size() > s.clusters.size()) r.fail("more shot costs than clusters");
   if (!r.done()) r.fail("trailing bytes");
   if (shots < 0 || uint64_t(shots) != logged) r.fail("shot count differs from the shot log");
@@ -180,7 +178,6 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   s.history = std::move(history);
   s.shot_log = std::move(log);
   s.cluster_cost = std::move(cluster_cost);
-  s.cost_total = cost_total;
   update_unshot_totals(s);
 }
 

@@ -32,7 +32,7 @@ size_t area_bin(float area) {
 
 // What a shot of each cluster is expected to cost, in vertices gathered: its last shot's, or
 // for one not shot yet, the mean of the last shots of the clusters of its size shot so far (else
-// of every shot so far), and what every shot costs besides.
+// of all clusters shot so far), and what every shot costs besides.
 struct ExpectedCost {
   const SolverState& s;
   std::array<double, 64> bin_mean{};
@@ -45,8 +45,12 @@ struct ExpectedCost {
       const size_t b = area_bin(s.clusters.area[c]);
       sum[b] += s.cluster_cost[c], count[b] += 1.0;
     }
-    for (size_t b = 0; b < 64; ++b) bin_mean[b] = count[b] > 0.0 ? sum[b] / count[b] : 0.0;
-    mean = s.shots > 0 ? s.cost_total / double(s.shots) : 0.0;
+    double all = 0.0, shot = 0.0;
+    for (size_t b = 0; b < 64; ++b) {
+      bin_mean[b] = count[b] > 0.0 ? sum[b] / count[b] : 0.0;
+      all += sum[b], shot += count[b];
+    }
+    mean = shot > 0.0 ? all / shot : 0.0;
   }
 
   double operator()(size_t c) const {
@@ -62,65 +66,54 @@ struct ExpectedCost {
 std::optional<Shooter> choose_shooter(const SolverState& s) {
   // The largest of the clusters' energies per cost, the energies kept current shot by shot for
   // the clusters a shot changed (ties: the lowest index). A shot without Lights lists changes
-  // nearly every cluster, so a heap would be rebuilt each time; one pass over a double a cluster
-  // costs less (with overshooting, one parallel pass over the polygons). Under MPI each rank
-  // looks at its own clusters (the others' are 0), and one reduction picks among them.
+  // nearly every cluster, so a heap would be rebuilt each time: one parallel pass (over the
+  // clusters' energies, or with overshooting over their polygons) costs less. Under MPI each
+  // rank looks at its own clusters (the others' are 0), and one reduction picks among them.
   // Per cost: what a shot removes of the unshot energy is about its energy whatever it costs,
   // so the most energy per second goes first. A building's floor sees the rooms along
   // its doors and gathers at seven times the vertices of a chair's shot; it waits until it holds
   // seven times the energy, and shoots it in one go.
-  const std::vector<double>& energy = s.cluster_energy;
-  const size_t nc = energy.size();
-  int32_t best = -1;
-  double best_score = 0.0;
-  if (s.options.overshoot) {
-    // With overshooting a cluster shoots its unshot energy plus its share of the ambient: what
-    // it would shoot now, not what it holds, says which goes first. (By what it holds, one that
-    // holds the overshoot it shot last, -rho x ambient, shoots next and nothing again, and the
-    // held overshoot of all of them grows: a furnished room ended with 42% of its energy
-    // unshot after 900 shots.)
-    const double amb = ambient_estimate(s);
-    const ExpectedCost expected_cost(s);
-    const Triangles& tris = s.hierarchy->triangles;
-    const Clusters& k = s.clusters;
-    auto shooting = [&](size_t c) {
-      double e = 0.0;
-      for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) {
-        const uint32_t p = k.polygons[j];
-        const double rho = mean_component(s.material_of(p).reflectance);
-        // The share changes the sum; what cancels between the channels stays to shoot.
-        const UnshotEnergy& u = s.unshot_energy[p];
-        e += std::abs(u.sum + rho * amb * double(tris.area[p])) + u.magnitude - std::abs(u.sum);
-      }
-      return e;
-    };
-    using Best = std::pair<double, int32_t>;  // (score, -index): the larger wins, ties lowest
-    const Best found = tbb::parallel_reduce(
-        tbb::blocked_range<size_t>(0, nc, 256), Best{0.0, 1},
-        [&](const tbb::blocked_range<size_t>& r, Best b) {
-          for (size_t c = r.begin(); c != r.end(); ++c) {
-            if (!s.owns_cluster(c)) continue;
-            const double e = shooting(c);
-            if (!(e > 0.0)) continue;  // NaN too: it would win or lose by its index alone
-            b = std::max(b, Best{e / expected_cost(c), -int32_t(c)});
-          }
-          return b;
-        },
-        [](const Best& a, const Best& b) { return std::max(a, b); });
-    if (found.first > 0.0) best_score = found.first, best = -found.second;
-    if (s.ranks) std::tie(best_score, best) = s.ranks->max_location(best_score, best);
-    if (best < 0 || !(best_score > 0.0)) return std::nullopt;
-    // The owner freezes it (the others' unshot energies of it are 0).
-    return Shooter{best, s.owns_cluster(size_t(best)) ? shooting(size_t(best)) : 0.0};
-  }
+  // With overshooting a cluster shoots its unshot energy plus its share of the ambient: what
+  // it would shoot now, not what it holds, says which goes first. (By what it holds, one that
+  // holds the overshoot it shot last, -rho x ambient, shoots next and nothing again, and the
+  // held overshoot of all of them grows: a furnished room ended with 42% of its energy unshot
+  // after 900 shots.)
+  const bool overshoot = s.options.overshoot;
+  const double amb = overshoot ? ambient_estimate(s) : 0.0;
   const ExpectedCost expected_cost(s);
-  for (size_t c = 0; c < nc; ++c) {
-    const double score = energy[c] / expected_cost(c);
-    if (score > best_score) best_score = score, best = int32_t(c);
-  }
+  const Triangles& tris = s.hierarchy->triangles;
+  const Clusters& k = s.clusters;
+  auto shooting = [&](size_t c) {
+    if (!overshoot) return s.cluster_energy[c];
+    double e = 0.0;
+    for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) {
+      const uint32_t p = k.polygons[j];
+      const double rho = mean_component(s.material_of(p).reflectance);
+      // The share changes the sum; what cancels between the channels stays to shoot.
+      const UnshotEnergy& u = s.unshot_energy[p];
+      e += std::abs(u.sum + rho * amb * double(tris.area[p])) + u.magnitude - std::abs(u.sum);
+    }
+    return e;
+  };
+  using Best = std::pair<double, int32_t>;  // (score, -index): the larger wins, ties lowest
+  const Best found = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, k.size(), 256), Best{0.0, 1},
+      [&](const tbb::blocked_range<size_t>& r, Best b) {
+        for (size_t c = r.begin(); c != r.end(); ++c) {
+          if (!s.owns_cluster(c)) continue;
+          const double e = shooting(c);
+          if (!(e > 0.0)) continue;  // NaN too: it would win or lose by its index alone
+          b = std::max(b, Best{e / expected_cost(c), -int32_t(c)});
+        }
+        return b;
+      },
+      [](const Best& a, const Best& b) { return std::max(a, b); });
+  double best_score = found.first;
+  int32_t best = found.first > 0.0 ? -found.second : -1;
   if (s.ranks) std::tie(best_score, best) = s.ranks->max_location(best_score, best);
   if (best < 0 || !(best_score > 0.0)) return std::nullopt;
-  return Shooter{best, energy[size_t(best)]};
+  // The owner freezes it (the others hold none of its unshot energy).
+  return Shooter{best, s.owns_cluster(size_t(best)) ? shooting(size_t(best)) : 0.0};
 }
 
 namespace {
@@ -219,7 +212,6 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   if (s.ranks) s.ranks->sum(std::span<int64_t>(&gathered, 1));
   s.cluster_cost.resize(s.clusters.size(), 0.0);
   s.cluster_cost[c] = double(gathered);
-  s.cost_total += double(gathered);
 
   ++s.shots;
   ShotRecord r{s.shots, shooter->cluster, s.stats.shoot_seconds + s.stats.refine_seconds,

@@ -166,9 +166,8 @@ struct SolverState {
   size_t kept_rays_bytes = 0;
   std::vector<uint64_t> cluster_last_shot;  // per cluster: the number of its last shot, 0: none
   /// What a shot of each cluster costs, in vertices gathered (those of its last shot's
-  /// receivers; 0: not shot yet), and the sum over all shots so far (solver.cpp).
+  /// receivers; 0: not shot yet), for choosing the shooter (solver.cpp).
   std::vector<double> cluster_cost;
-  double cost_total = 0.0;
   /// Under MPI (solver/distribute.h): the ranks solving together, the owner of each cluster and
   /// which polygons are this rank's. One process: null and empty, every polygon its own.
   Ranks* ranks = nullptr;
