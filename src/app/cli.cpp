@@ -106,6 +106,12 @@ struct Solving {
                    "One shadow ray instead of one per sample when a vertex's unoccluded gain is "
                    "below this fraction of the radiosity scale")
         ->capture_default_str();
+    app.add_option("--roulette", o.roulette,
+                   "Russian roulette: a vertex whose gain from a shot is bounded below this "
+                   "fraction of the radiosity scale gathers with probability bound / level, its "
+                   "gain divided by it (unbiased; far receivers cost less); 0: off")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
     app.add_option("--converge", o.converge,
                    "Stop when unshot energy <= this fraction of the emitted energy")
         ->capture_default_str();

@@ -22,7 +22,7 @@ namespace {
 constexpr char kMagic[8] = {'R', 'A', 'D', 'C', 'K', 'P', 'T', '\n'};
 // 2: vertices shared by copy; 3: kept shadow-ray answers counted; 4: vertex states apart from
 // the positions
-constexpr uint32_t kFormat = 5;
+constexpr uint32_t kFormat = 6;
 constexpr size_t kHeader = sizeof kMagic + sizeof(uint32_t) + 3 * sizeof(uint64_t);
 
 struct HistoryRecord {
@@ -53,6 +53,7 @@ uint64_t solve_fingerprint(const Hierarchy& h, const SolverOptions& o, BackendKi
   f.add(o.shadows).add(o.sample_grid).add(o.max_sample_grid).add(o.method);
   f.add(o.subdivision_threshold).add(o.midpoints).add(o.min_size).add(o.max_size);
   f.add(o.intensity_cut)
+      .add(o.roulette)
       .add(o.major_shot_fraction)
       .add(o.overshoot)
       .add(o.occlusion_culling)

@@ -198,11 +198,10 @@ void trace_active(const Vec3& x, const Vec3& n, const ShotSource& src, size_t na
   kept->record[0] = kept->epoch;
 }
 
-}  // namespace
-
-Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid,
-                        const ShotSource& src, const VisibilityBackend& vis,
-                        const GatherSettings& st, GatherScratch& scratch, const VertexRays* kept) {
+// gather_from_source without the roulette.
+Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const ShotSource& src,
+                const VisibilityBackend& vis, const GatherSettings& st, GatherScratch& scratch,
+                const VertexRays* kept) {
   const Vec3 x = x_vertex + (centroid - x_vertex) * st.inset;
   // One-sided source: a receiver behind every one of its triangles gets nothing.
   const int side = receiver_side(src, x);
@@ -279,6 +278,22 @@ Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroi
     if (!scratch.blocked[j]) visible += sm.value(scratch.active[j]) * k[scratch.active[j]];
   }
   return visible * scale;
+}
+
+}  // namespace
+
+Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid,
+                        const ShotSource& src, const VisibilityBackend& vis,
+                        const GatherSettings& st, GatherScratch& scratch, const VertexRays* kept) {
+  // The roulette looks at the vertex itself, not the point moved inside its polygon: the
+  // polygons sharing a vertex make the same choice for it.
+  const float w = src.roulette_weight(x_vertex);
+  if (w == 0.0f) {
+    ++scratch.stats.roulette;
+    return Vec3(0.0f);
+  }
+  const Vec3 h = gather_all(x_vertex, n, centroid, src, vis, st, scratch, kept);
+  return w == 1.0f ? h : h * w;
 }
 
 void parallel_gather(size_t n, size_t grain, SolverStats& stats,

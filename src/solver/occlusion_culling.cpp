@@ -508,6 +508,9 @@ ShotOccluders choose_occluders(const OcclusionCulling& c, const ShotSource& src)
   std::vector<double> score(c.occluders.size(), 0.0);
   tbb::parallel_for(size_t(0), c.occluders.size(), [&](size_t k) {
     const Occluder& o = c.occluders[k];
+    // Beyond the roulette's reach it hides only what the shot skips anyway: the points it
+    // reaches lie nearer, and so do the segments to them.
+    if (!src.roulette_reaches(o.box)) return;
     const double d = glm::dot(centre - o.origin, o.normal);
     if (std::abs(d) <= glm::dot(half, glm::abs(o.normal)) + 2.0 * c.margin) return;
     if (!(o.hides_behind & (d > 0.0 ? 1 : 2))) return;
@@ -552,6 +555,7 @@ void walk(const OcclusionCulling& c, const ShotSource& src, const ShotOccluders&
     Visit v = stack.back();
     stack.pop_back();
     const Aabb& b = tree.box[v.node];
+    if (!src.roulette_reaches(b)) continue;
     if (src.planar && glm::dot(b.center() - src.centroid, src.axis) +
                               glm::dot(b.extent() * 0.5f, glm::abs(src.axis)) <=
                           front)

@@ -55,6 +55,11 @@ struct SolverOptions {
   /// from the shot is below this fraction of the radiosity scale (to the sample that weighs
   /// most: the gain is the unoccluded one if it is clear, else 0).
   float intensity_cut = 1e-4f;
+  /// Russian roulette over far receivers (shot_source.h): a point whose gain from a shot is
+  /// bounded below this fraction of the radiosity scale gathers only with a probability
+  /// bound / level, its gain divided by it; the answer is the same on average and a shot costs
+  /// the receivers near it. 0: every receiver gathers every shot.
+  float roulette = 1e-2f;
   /// Stop when unshot energy <= converge x emitted energy.
   double converge = 1e-3;
   /// Shots carrying at least this fraction of the emitted energy are "major": a vertex created

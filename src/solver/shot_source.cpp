@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <numeric>
 
 #include "mesh/sample_points.h"
@@ -176,6 +177,37 @@ ShotSource make_shot_source(const SolverState& s, int32_t c) {
   src.single_distance = kSingleExtents * src.extent;
   src.far_distance = kFarFieldExtents * src.extent;
   return src;
+}
+
+bool ShotSource::roulette_reaches(const Aabb& b) const {
+  if (!(roulette_draw > 0.0f)) return true;
+  const Vec3 gap = glm::max(glm::max(box.lo - b.hi, b.lo - box.hi), Vec3(0.0f));
+  const float d2 = glm::dot(gap, gap);
+  const float q = d2 * roulette_peak > roulette_reach2 ? roulette_reach2 / d2 : roulette_peak;
+  return q >= 1.0f || q > roulette_draw;
+}
+
+void aim_roulette(ShotSource& src, float level, int64_t shot) {
+  src.roulette_draw = 0.0f;
+  if (!(level > 0.0f)) return;
+  // The gain at x is at most the largest unshot radiosity on the source times its form factor,
+  // itself at most min(1, A / (pi d^2)) (every cosine at most 1, every point of the source at
+  // least d away).
+  float peak = 0.0f;
+  for (const SampleLanes* l : {&src.sample, &src.fine_sample}) {
+    for (const std::vector<float>* c : {&l->r, &l->g, &l->b}) {
+      for (float v : *c) peak = std::max(peak, std::abs(v));
+    }
+  }
+  if (!(peak > 0.0f && peak < std::numeric_limits<float>::max())) return;  // nothing, NaN, inf
+  src.roulette_peak = std::min(1.0f, peak / level);
+  src.roulette_reach2 = peak * src.area / (std::numbers::pi_v<float> * level);
+  // splitmix64 of the shot number: a draw in (0, 1), never 0.
+  uint64_t z = uint64_t(shot) + 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  z ^= z >> 31;
+  src.roulette_draw = (float(z >> 40) + 0.5f) / float(uint64_t(1) << 24);
 }
 
 }  // namespace rad

@@ -65,6 +65,25 @@ struct ShotSource {
   // kLanes (g + 1)) all belong to sample fine_group_parent[g], whose visibility they take.
   SampleLanes fine_sample;
   std::vector<uint32_t> fine_group_parent;
+  // Russian roulette (Arvo and Kirk, "Particle transport and image synthesis", SIGGRAPH 1990)
+  // over the receivers: where a point's gain is bounded by `level` times
+  // q(x) = min(peak, reach2 / d^2) < 1 (d: its distance to the source's box), it gathers only
+  // when q(x) > draw and divides its gain by q(x). One draw per shot, so a receiver's vertices
+  // all gather or none do, and a box beyond reach gathers nothing (the shot skips it).
+  // draw = 0: every point gathers, as is.
+  float roulette_draw = 0.0f, roulette_peak = 1.0f, roulette_reach2 = 0.0f;
+
+  /// The factor point x's gain is multiplied by: 0 where it does not gather, 1 / q(x) where the
+  /// roulette applies, else 1.
+  float roulette_weight(const Vec3& x) const {
+    if (!(roulette_draw > 0.0f)) return 1.0f;
+    const Vec3 gap = glm::max(glm::max(box.lo - x, x - box.hi), Vec3(0.0f));
+    const float d2 = glm::dot(gap, gap);
+    const float q = d2 * roulette_peak > roulette_reach2 ? roulette_reach2 / d2 : roulette_peak;
+    return q >= 1.0f ? 1.0f : (q > roulette_draw ? 1.0f / q : 0.0f);
+  }
+  /// False when no point of `b` gathers (roulette_weight is 0 throughout).
+  bool roulette_reaches(const Aabb& b) const;
 };
 
 /// The number of samples per side m (n = m * m) a source of box diagonal `extent` gets: the
@@ -78,5 +97,10 @@ int sample_grid_for(const SolverState& s, float extent);
 /// centroid with its area, mean normal and mean unshot radiosity (the shadow ray ends at the
 /// stratum's point nearest the centroid of its unshot power, which lies on the surface).
 ShotSource make_shot_source(const SolverState& s, int32_t c);
+
+/// Sets src's roulette for the shot numbered `shot` (its draw, fixed by the number: the same
+/// for any thread or rank count, and again after a checkpoint): a point gathers for certain where
+/// its gain may reach `level` (radiosity units). level <= 0: off.
+void aim_roulette(ShotSource& src, float level, int64_t shot);
 
 }  // namespace rad

@@ -84,7 +84,12 @@ std::optional<Shooter> choose_shooter(const SolverState& s) {
   const Triangles& tris = s.hierarchy->triangles;
   const Clusters& k = s.clusters;
   auto shooting = [&](size_t c) {
-    if (!overshoot) return s.cluster_energy[c];
+    const ClusterUnshot& u = s.cluster_unshot[c];
+    if (!overshoot) return u.magnitude;
+    // Beyond every polygon's break the sum is linear in the ambient (most clusters, most
+    // shots): a pass over the clusters, not the polygons.
+    if (amb >= u.hi) return u.rest + (u.sum + u.rho_area * amb);
+    if (amb <= u.lo) return u.rest - (u.sum + u.rho_area * amb);
     double e = 0.0;
     for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) {
       const uint32_t p = k.polygons[j];
@@ -145,6 +150,9 @@ ShotSource freeze_source(SolverState& s, size_t c, double energy) {
 
   src.major = s.options.major_shot_fraction > 0.0 &&
               energy >= s.options.major_shot_fraction * s.reference_energy;
+  // A major shot lights every receiver it may: its part is gathered again at new vertices and
+  // holds the sharp shadows.
+  if (!src.major) aim_roulette(src, s.options.roulette * s.radiosity_scale, s.shots + 1);
   return src;
 }
 

@@ -23,6 +23,7 @@ SolverStats& SolverStats::operator+=(const SolverStats& o) {
   intensity_cuts += o.intensity_cuts;
   kept_answers += o.kept_answers;
   culled += o.culled;
+  roulette += o.roulette;
   hidden += o.hidden;
   vertex_evaluations += o.vertex_evaluations;
   subdivisions += o.subdivisions;
@@ -92,13 +93,40 @@ FixedSums sum_fixed(size_t n, const Term& term) {
         return FixedSums{a[0] + b[0], a[1] + b[1]};
       });
 }
+
+// Area-weighted mean reflectance per channel, from the current (possibly edited) materials.
+DVec3 mean_reflectance(const SolverState& s) {
+  const Triangles& tris = s.hierarchy->triangles;
+  DVec3 rho(0.0);
+  for (size_t t = 0; t < tris.size(); ++t)
+    rho += DVec3(s.material_of(t).reflectance) * double(tris.area[t]);
+  return s.total_area > 0.0 ? rho / s.total_area : rho;
+}
+
+// Cohen's interreflection factor 1 / (1 - mean reflectance), kept finite.
+DVec3 interreflection(const DVec3& mean_rho) {
+  return 1.0 / (1.0 - glm::min(mean_rho, DVec3(0.999)));
+}
 }  // namespace
 
-double cluster_unshot_energy(const SolverState& s, size_t c) {
-  double e = 0.0;
-  for (uint32_t j = s.clusters.first[c]; j < s.clusters.first[c + 1]; ++j)
-    e += s.unshot_energy[s.clusters.polygons[j]].magnitude;
-  return e;
+ClusterUnshot cluster_unshot(const SolverState& s, size_t c) {
+  ClusterUnshot k;
+  k.lo = std::numeric_limits<double>::infinity(), k.hi = -k.lo;
+  const Triangles& tris = s.hierarchy->triangles;
+  for (uint32_t j = s.clusters.first[c]; j < s.clusters.first[c + 1]; ++j) {
+    const uint32_t p = s.clusters.polygons[j];
+    const UnshotEnergy& u = s.unshot_energy[p];
+    const double r = mean_component(s.material_of(p).reflectance) * double(tris.area[p]);
+    k.magnitude += u.magnitude;
+    k.rest += u.magnitude - std::abs(u.sum);
+    if (r > 0.0) {
+      k.sum += u.sum, k.rho_area += r;
+      k.lo = std::min(k.lo, -u.sum / r), k.hi = std::max(k.hi, -u.sum / r);
+    } else {
+      k.rest += std::abs(u.sum);
+    }
+  }
+  return k;
 }
 
 void update_unshot_totals(SolverState& s) {
@@ -108,9 +136,10 @@ void update_unshot_totals(SolverState& s) {
     return FixedSums{to_fixed(u.magnitude, scale), to_fixed(u.sum, scale)};
   });
   s.unshot_abs_fixed = t[0], s.unshot_signed_fixed = t[1];
-  s.cluster_energy.resize(s.clusters.size());
+  s.cluster_unshot.resize(s.clusters.size());
   tbb::parallel_for(size_t(0), s.clusters.size(),
-                    [&](size_t c) { s.cluster_energy[c] = cluster_unshot_energy(s, c); });
+                    [&](size_t c) { s.cluster_unshot[c] = cluster_unshot(s, c); });
+  s.interreflection = mean_component(Vec3(interreflection(mean_reflectance(s))));
   share_unshot_totals(s);
 }
 
@@ -133,7 +162,7 @@ void set_unshot_energies(SolverState& s, std::span<const uint32_t> polygons,
   std::sort(clusters.begin(), clusters.end());
   clusters.erase(std::unique(clusters.begin(), clusters.end()), clusters.end());
   tbb::parallel_for(size_t(0), clusters.size(), [&](size_t i) {
-    s.cluster_energy[clusters[i]] = cluster_unshot_energy(s, clusters[i]);
+    s.cluster_unshot[clusters[i]] = cluster_unshot(s, clusters[i]);
   });
 }
 
@@ -326,26 +355,9 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   return s;
 }
 
-namespace {
-// Area-weighted mean reflectance per channel, from the current (possibly edited) materials.
-DVec3 mean_reflectance(const SolverState& s) {
-  const Triangles& tris = s.hierarchy->triangles;
-  DVec3 rho(0.0);
-  for (size_t t = 0; t < tris.size(); ++t)
-    rho += DVec3(s.material_of(t).reflectance) * double(tris.area[t]);
-  return s.total_area > 0.0 ? rho / s.total_area : rho;
-}
-
-// Cohen's interreflection factor 1 / (1 - mean reflectance), kept finite.
-DVec3 interreflection(const DVec3& mean_rho) {
-  return 1.0 / (1.0 - glm::min(mean_rho, DVec3(0.999)));
-}
-}  // namespace
-
 float ambient_estimate(const SolverState& s) {
   if (s.total_area <= 0.0) return 0.0f;
-  return float(s.unshot_signed_total / s.total_area *
-               mean_component(Vec3(interreflection(mean_reflectance(s)))));
+  return float(s.unshot_signed_total / s.total_area * s.interreflection);
 }
 
 Vec3 ambient_radiosity(const SolverState& s) {

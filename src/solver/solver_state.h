@@ -27,6 +27,7 @@ struct SolverStats {
   uint64_t intensity_cuts = 0;  // shadow rays skipped by the intensity cut (all but one)
   uint64_t kept_answers = 0;    // shadow rays not traced again: answer kept (kept_rays.h)
   uint64_t culled = 0;          // vertex evaluations skipped: source behind or facing away
+  uint64_t roulette = 0;        // vertex evaluations skipped by the roulette (shot_source.h)
   /// Receiving triangles a shot skipped whole: hidden by an occluder, or behind the source.
   uint64_t hidden = 0;
   uint64_t vertex_evaluations = 0;  // vertex-to-source gathers computed
@@ -55,6 +56,17 @@ struct VertexState {
 /// +x in one and -x in another: a sum near 0, yet light to shoot); else magnitude = |sum|.
 struct UnshotEnergy {
   double sum = 0.0, magnitude = 0.0;
+};
+
+/// What a cluster's polygons hold unshot, summed for choosing the shooter (solver.cpp). With
+/// overshooting polygon p shoots |u_p + r_p a| + m_p - |u_p|: u_p its signed unshot energy, m_p
+/// its magnitude, r_p its mean reflectance times its area, a the ambient estimate. Where a lies
+/// beyond every polygon's break -u_p / r_p, the sum over the cluster is linear in a.
+struct ClusterUnshot {
+  double magnitude = 0.0;            // sum of m_p: what it shoots without overshooting
+  double sum = 0.0, rho_area = 0.0;  // sums of u_p and r_p over the polygons with r_p > 0
+  double rest = 0.0;                 // sum of the terms that do not depend on a
+  double lo = 0.0, hi = 0.0;         // least and largest break (lo > hi: no polygon has one)
 };
 
 /// One line of the convergence history.
@@ -150,10 +162,13 @@ struct SolverState {
   std::vector<ShotRecord> history;
   /// Sums over the polygons (and the ranks) of the unshot energies' magnitudes and sums, kept by
   /// update_unshot_totals, set_unshot_energies and share_unshot_totals; the same two over this
-  /// rank's polygons in fixed point; per cluster, cluster_unshot_energy (0 for other ranks').
+  /// rank's polygons in fixed point; per cluster, cluster_unshot (0 for other ranks').
   double unshot_abs_total = 0.0, unshot_signed_total = 0.0;
   Fixed128 unshot_abs_fixed = 0, unshot_signed_fixed = 0;
-  std::vector<double> cluster_energy;
+  std::vector<ClusterUnshot> cluster_unshot;
+  /// Cohen's interreflection factor 1 / (1 - mean reflectance), mean over the channels: the
+  /// materials change only by edits, and each edit updates the totals.
+  double interreflection = 1.0;
   /// The polygons that may have gained from the last shot: a mask per polygon and their list
   /// in index order (shoot_to_receivers; kept between shots so a small shot costs little).
   std::vector<uint8_t> received;
@@ -220,10 +235,11 @@ bool on_triangle_edge(const std::array<Vec3, 3>& c, const Vec3& x);
 /// polygon edges (vertices from initial_vertices[p] on).
 void find_edge_midpoints(SolverState& s, std::span<const uint32_t> initial_vertices);
 
-/// Unshot energy of cluster c: the sum of its polygons' unshot energy magnitudes, in order.
-double cluster_unshot_energy(const SolverState& s, size_t c);
+/// Cluster c's unshot energy from its polygons', in order.
+ClusterUnshot cluster_unshot(const SolverState& s, size_t c);
 
-/// Sets the unshot totals and every cluster's energy from unshot_energy after it changed. The
+/// Sets the unshot totals, every cluster's energy and the interreflection factor from
+/// unshot_energy and the materials after they changed. The
 /// totals are summed in fixed point (2^-64 of the emitted energy), which is exact and so the
 /// same in any order and across any split of the polygons between ranks (summed over them too:
 /// collective under MPI). Floating-point sums would differ in their last bits, and the

@@ -28,16 +28,33 @@ struct ShotHeader {
   float cone_cos, cone_sin, offset_lo, offset_hi, area, extent;
   float near_distance, single_distance, far_distance;
   Aabb box;
-  uint32_t unused = 0;
+  float roulette_draw, roulette_peak, roulette_reach2;
 };
-static_assert(sizeof(ShotHeader) == 120 && sizeof(Element) == 20 && sizeof(VertexState) == 48);
+static_assert(sizeof(ShotHeader) == 128 && sizeof(Element) == 20 && sizeof(VertexState) == 48);
 
 }  // namespace
 
 void write_shot(ByteWriter& w, const ShotSource& s) {
-  w.pod(ShotHeader{uint64_t(s.sample_count), s.cluster, s.planar, s.major, s.centroid, s.axis,
-                   s.mean_unshot, s.cone_cos, s.cone_sin, s.offset_lo, s.offset_hi, s.area,
-                   s.extent, s.near_distance, s.single_distance, s.far_distance, s.box});
+  w.pod(ShotHeader{uint64_t(s.sample_count),
+                   s.cluster,
+                   s.planar,
+                   s.major,
+                   s.centroid,
+                   s.axis,
+                   s.mean_unshot,
+                   s.cone_cos,
+                   s.cone_sin,
+                   s.offset_lo,
+                   s.offset_hi,
+                   s.area,
+                   s.extent,
+                   s.near_distance,
+                   s.single_distance,
+                   s.far_distance,
+                   s.box,
+                   s.roulette_draw,
+                   s.roulette_peak,
+                   s.roulette_reach2});
   w.vec(s.edge_a), w.vec(s.edge_b), w.vec(s.interior);
   write_lanes(w, s.sample);
   w.vec(s.end_x), w.vec(s.end_y), w.vec(s.end_z);
@@ -55,6 +72,12 @@ ShotSource read_shot(ByteReader& r, size_t clusters) {
   s.offset_hi = h.offset_hi, s.area = h.area, s.extent = h.extent;
   s.near_distance = h.near_distance, s.single_distance = h.single_distance;
   s.far_distance = h.far_distance, s.box = h.box;
+  s.roulette_draw = h.roulette_draw, s.roulette_peak = h.roulette_peak;
+  s.roulette_reach2 = h.roulette_reach2;
+  if (!(s.roulette_draw >= 0.0f && s.roulette_draw < 1.0f && s.roulette_peak > 0.0f &&
+        s.roulette_peak <= 1.0f && s.roulette_reach2 >= 0.0f)) {
+    r.fail("a shot's roulette out of range");
+  }
   r.vec(s.edge_a), r.vec(s.edge_b), r.vec(s.interior);
   if (s.edge_a.size() != s.edge_b.size()) r.fail("an outline of unpaired edges");
   read_lanes(r, s.sample);

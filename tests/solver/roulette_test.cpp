@@ -1,0 +1,160 @@
+// The Russian roulette over a shot's far receivers (shot_source.h): unbiased on average over the
+// shots' draws, and a shot skips what lies beyond its reach.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "scene_builder.h"
+#include "solver/gather.h"
+#include "solver/shoot.h"
+#include "solver/shot_source.h"
+
+namespace rad {
+namespace {
+
+// A small light 1 above the origin facing down, and a long floor under it cut into small
+// triangles that run out to 40 light widths away.
+struct FarFloor {
+  Hierarchy h;
+  std::unique_ptr<VisibilityBackend> vis;
+  SolverState s;
+  FarFloor() {
+    SceneDescription d;
+    testing::add_quad(d, "floor", {-2, -2, 0}, {40, -2, 0}, {40, 2, 0}, {-2, 2, 0}, Vec3(0.5f),
+                      Vec3(0), 16);
+    testing::add_quad(d, "light", {-0.5f, -0.5f, 1}, {-0.5f, 0.5f, 1}, {0.5f, 0.5f, 1},
+                      {0.5f, -0.5f, 1}, Vec3(0), Vec3(1));
+    h = build_hierarchy(d);
+    vis = make_visibility_backend(BackendKind::Embree, h);
+    s = make_solver_state(h, {});
+  }
+  ShotSource light() const {
+    return make_shot_source(s, int32_t(s.clusters.cluster_of[h.triangles.size() - 1]));
+  }
+};
+
+TEST(Roulette, DrawsLieInTheOpenUnitIntervalAndDependOnTheShotOnly) {
+  FarFloor f;
+  ShotSource a = f.light(), b = f.light();
+  double sum = 0.0;
+  for (int64_t shot = 1; shot <= 10000; ++shot) {
+    aim_roulette(a, 1e-2f, shot);
+    aim_roulette(b, 1e-2f, shot);
+    ASSERT_GT(a.roulette_draw, 0.0f);
+    ASSERT_LT(a.roulette_draw, 1.0f);
+    ASSERT_EQ(a.roulette_draw, b.roulette_draw);
+    sum += a.roulette_draw;
+  }
+  EXPECT_NEAR(sum / 10000.0, 0.5, 0.01);
+  aim_roulette(a, 0.0f, 7);
+  EXPECT_EQ(a.roulette_draw, 0.0f) << "level 0: off";
+  EXPECT_EQ(a.roulette_weight(Vec3(1000.0f)), 1.0f);
+}
+
+TEST(Roulette, AFarPointsWeightIsOneOnAverageAndNearPointsAlwaysGather) {
+  FarFloor f;
+  ShotSource src = f.light();
+  // Unit unshot radiosity, area 1: the gain bound at distance d is 1 / (pi d^2). A level that
+  // puts the reach at distance 2.
+  const float level = 1.0f / (std::numbers::pi_v<float> * 4.0f);
+  // Distances 1.5 and sqrt(40) below the light's plane.
+  const Vec3 near(0.5f, 0.5f, -0.5f), far(0.5f, 0.5f, 1.0f - 2.0f * std::sqrt(10.0f));
+  double sum = 0.0;
+  int gathered = 0;
+  const int draws = 100000;
+  for (int64_t shot = 1; shot <= draws; ++shot) {
+    aim_roulette(src, level, shot);
+    ASSERT_EQ(src.roulette_weight(near), 1.0f);
+    const float w = src.roulette_weight(far);
+    sum += w;
+    gathered += w > 0.0f;
+  }
+  // q = (2 / d)^2 = 0.1 at the far point: a tenth of the draws gather, each with weight 10.
+  EXPECT_NEAR(double(gathered) / draws, 0.1, 0.005);
+  EXPECT_NEAR(sum / draws, 1.0, 0.04);
+}
+
+TEST(Roulette, ABoxBeyondReachHoldsNoPointThatGathers) {
+  FarFloor f;
+  ShotSource src = f.light();
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-30.0f, 30.0f), size(0.0f, 5.0f);
+  int beyond = 0, within = 0;
+  for (int i = 0; i < 2000; ++i) {
+    aim_roulette(src, 1e-3f, i + 1);
+    Aabb box;
+    box.extend(Vec3(u(rng), u(rng), u(rng)));
+    box.extend(box.lo + Vec3(size(rng), size(rng), size(rng)));
+    const bool reaches = src.roulette_reaches(box);
+    (reaches ? within : beyond) += 1;
+    for (int k = 0; k < 8; ++k) {
+      const Vec3 t(float(k & 1), float((k >> 1) & 1), float((k >> 2) & 1));
+      const Vec3 x = box.lo + (box.hi - box.lo) * t;
+      if (!reaches) {
+        EXPECT_EQ(src.roulette_weight(x), 0.0f);
+      }
+      Aabb point;
+      point.extend(x);
+      EXPECT_EQ(src.roulette_reaches(point), src.roulette_weight(x) > 0.0f);
+    }
+  }
+  EXPECT_GT(beyond, 100);
+  EXPECT_GT(within, 100);
+}
+
+TEST(Roulette, TheFloorGainsTheSameOnAverageAndAShotSkipsWhatItDoesNotReach) {
+  FarFloor f;
+  const ShotSource plain = f.light();
+  const GatherSettings g = gather_settings(f.s);
+  const size_t floor_triangles = f.h.triangles.size() - 2;
+  // The gain of the floor beyond x = 3 (where the roulette plays) summed over its vertices, each
+  // weighted by its triangle's area: without the roulette, and on average over shots with it.
+  auto floor_gain = [&](const ShotSource& src) {
+    GatherScratch sc;
+    double sum = 0.0;
+    for (size_t p = 0; p < floor_triangles; ++p) {
+      for (const Vec3& x : f.h.triangles.corners[p]) {
+        if (x.x <= 3.0f) continue;
+        sum += double(f.h.triangles.area[p]) * gather_from_source(x, f.h.triangles.normal[p],
+                                                                  f.h.triangles.centroid(p), src,
+                                                                  *f.vis, g, sc)
+                                                   .x;
+      }
+    }
+    return sum;
+  };
+  const double exact = floor_gain(plain);
+  // The level where the reach is 3: the floor runs to 40.
+  const float level = 1.0f / (std::numbers::pi_v<float> * 9.0f);
+  double mean = 0.0;
+  const int shots = 3000;
+  for (int64_t shot = 1; shot <= shots; ++shot) {
+    ShotSource src = plain;
+    aim_roulette(src, level, shot);
+    mean += floor_gain(src) / shots;
+  }
+  std::printf("far floor gain: %.6f without the roulette, %.6f on average with it\n", exact, mean);
+  EXPECT_NEAR(mean, exact, 0.03 * exact);
+
+  // One shot: its receivers are the floor triangles whose box it reaches, and the others keep
+  // nothing of it.
+  ShotSource src = plain;
+  int64_t shot = 1;
+  for (aim_roulette(src, level, shot); src.roulette_draw < 0.5f; aim_roulette(src, level, ++shot)) {
+  }
+  shoot_to_receivers(f.s, src, *f.vis, false);
+  size_t reached = 0;
+  for (size_t p = 0; p < floor_triangles; ++p) {
+    Aabb b;
+    for (const Vec3& x : f.h.triangles.corners[p]) b.extend(x);
+    reached += src.roulette_reaches(b);
+    EXPECT_EQ(bool(f.s.received[p]), src.roulette_reaches(b)) << "triangle " << p;
+  }
+  EXPECT_GT(reached, 0u);
+  EXPECT_LT(reached, floor_triangles / 4);
+}
+
+}  // namespace
+}  // namespace rad
