@@ -91,7 +91,10 @@ SceneJobResult run_scene_job(const RunOptions& run, const SceneJob& job, Ranks* 
   auto t = Clock::now();
   const PreparedSolve prepared(hierarchy, run);
   const int threads = prepared.threads();
-  SolverState state = make_solver_state(hierarchy, run.solver);
+  // No edits here: the log keeps the major shots only.
+  SolverOptions solver = run.solver;
+  solver.log_minor_shots = false;
+  SolverState state = make_solver_state(hierarchy, solver);
 
   const uint64_t fingerprint =
       job.checkpoint.empty() && !ranks ? 0 : solve_fingerprint(hierarchy, run.solver, run.backend);
@@ -124,7 +127,7 @@ SceneJobResult run_scene_job(const RunOptions& run, const SceneJob& job, Ranks* 
   }
   limit_kept_answers(state.options, memory_limit);
   say(fmt::format(
-      "Memory: {} now, at most {} more by subdivision, {} per shot logged and {} of "
+      "Memory: {} now, at most {} more by subdivision, {} per major shot logged and {} of "
       "kept shadow-ray answers (limit {})",
       format_bytes(now), format_bytes(growth), format_bytes(per_shot),
       format_bytes(double(state.options.kept_rays_bytes)), format_bytes(double(memory_limit))));

@@ -77,6 +77,10 @@ struct SolverOptions {
   /// than samples: under the intensity cut (one ray) and where no sample faces the receiver
   /// (none: the visible sliver of a source).
   bool occlusion_culling = true;
+  /// Keep every shot in the shot log (an edit's new vertices gather them all again); false
+  /// keeps the major ones only, all that a solve without edits gathers again: a batch solve of
+  /// a large scene makes a hundred thousand shots of about 17 KiB each.
+  bool log_minor_shots = true;
   /// Memory for shadow-ray answers kept between shots of the same cluster (kept_rays.h); 0: none.
   size_t kept_rays_bytes = size_t(128) << 20;
   int64_t max_shots = -1;   // < 0: no limit

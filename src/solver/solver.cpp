@@ -204,7 +204,7 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
     if (refining[i]) refined.push_back(uint32_t(i)), to_refine.push_back(receivers[i]);
   }
   refine_after_shot(s, src, vis, major, to_refine);
-  s.shot_log.push_back(std::move(src));
+  if (src.major || s.options.log_minor_shots) s.shot_log.push_back(std::move(src));
   tbb::parallel_for(size_t(0), refined.size(), [&](size_t j) { count(refined[j]); });
   for (double a : absorbed) s.absorbed_energy += a;
   // The totals and the clusters' energies follow the polygons the shot changed, not the scene.

@@ -64,5 +64,20 @@ TEST(Solver, AShooterWhoseShotsGatherAtMoreVerticesWaitsForMoreEnergy) {
   EXPECT_NE(x->cluster, most->cluster);
 }
 
+TEST(Solver, ASolveWithoutEditsLogsItsMajorShotsOnly) {
+  const Hierarchy h = build_hierarchy(generate_scene(SceneKind::FurnishedRoom, 1000, 1));
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  SolverOptions o;
+  const SolverState all = testing::solve_shots(h, *vis, o, 30);
+  o.log_minor_shots = false;
+  const SolverState major = testing::solve_shots(h, *vis, o, 30);
+  EXPECT_EQ(all.shot_log.size(), 30u);
+  ASSERT_LT(major.shot_log.size(), 30u);
+  EXPECT_GT(major.shot_log.size(), 0u) << "the light's first shot is major";
+  for (const ShotSource& src : major.shot_log) EXPECT_TRUE(src.major);
+  // The same solve otherwise: the log is only read back by edits and forced subdivision.
+  EXPECT_EQ(all.unshot_fraction(), major.unshot_fraction());
+}
+
 }  // namespace
 }  // namespace rad
