@@ -182,8 +182,7 @@ ShotSource make_shot_source(const SolverState& s, int32_t c) {
 bool ShotSource::roulette_reaches(const Aabb& b) const {
   if (!(roulette_draw > 0.0f)) return true;
   const Vec3 gap = glm::max(glm::max(box.lo - b.hi, b.lo - box.hi), Vec3(0.0f));
-  const float d2 = glm::dot(gap, gap);
-  const float q = d2 * roulette_peak > roulette_reach2 ? roulette_reach2 / d2 : roulette_peak;
+  const float q = roulette_q(glm::dot(gap, gap));
   return q >= 1.0f || q > roulette_draw;
 }
 

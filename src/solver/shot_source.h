@@ -73,13 +73,16 @@ struct ShotSource {
   // draw = 0: every point gathers, as is.
   float roulette_draw = 0.0f, roulette_peak = 1.0f, roulette_reach2 = 0.0f;
 
+  /// q at squared distance d2 from the box.
+  float roulette_q(float d2) const {
+    return d2 * roulette_peak > roulette_reach2 ? roulette_reach2 / d2 : roulette_peak;
+  }
   /// The factor point x's gain is multiplied by: 0 where it does not gather, 1 / q(x) where the
   /// roulette applies, else 1.
   float roulette_weight(const Vec3& x) const {
     if (!(roulette_draw > 0.0f)) return 1.0f;
     const Vec3 gap = glm::max(glm::max(box.lo - x, x - box.hi), Vec3(0.0f));
-    const float d2 = glm::dot(gap, gap);
-    const float q = d2 * roulette_peak > roulette_reach2 ? roulette_reach2 / d2 : roulette_peak;
+    const float q = roulette_q(glm::dot(gap, gap));
     return q >= 1.0f ? 1.0f : (q > roulette_draw ? 1.0f / q : 0.0f);
   }
   /// False when no point of `b` gathers (roulette_weight is 0 throughout).
