@@ -28,7 +28,8 @@ struct SolverStats {
   uint64_t kept_answers = 0;    // shadow rays not traced again: answer kept (kept_rays.h)
   uint64_t culled = 0;          // vertex evaluations skipped: source behind or facing away
   uint64_t roulette = 0;        // vertex evaluations skipped by the roulette (shot_source.h)
-  /// Receiving triangles a shot skipped whole: hidden by an occluder, or behind the source.
+  /// Receiving triangles a shot skipped whole: hidden by an occluder, behind the source, or
+  /// beyond the roulette's reach (when culling is on).
   uint64_t hidden = 0;
   uint64_t vertex_evaluations = 0;  // vertex-to-source gathers computed
   uint64_t subdivisions = 0;        // elements split into four
