@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <limits>
 
 #include "core/math.h"
@@ -31,5 +32,12 @@ struct Aabb {
     return std::max(diagonal(), std::max(max_component(glm::abs(lo)), max_component(glm::abs(hi))));
   }
 };
+
+/// The box of a triangle's corners.
+inline Aabb triangle_box(const std::array<Vec3, 3>& c) {
+  Aabb b;
+  for (const Vec3& p : c) b.extend(p);
+  return b;
+}
 
 }  // namespace rad

@@ -22,12 +22,6 @@ constexpr uint32_t kLeafTriangles = 8;
 constexpr size_t kOccluders = 32;  // one bit each in a mask
 constexpr size_t kCandidates = 8 * kOccluders;
 
-Aabb triangle_box(const std::array<Vec3, 3>& c) {
-  Aabb b;
-  for (const Vec3& p : c) b.extend(p);
-  return b;
-}
-
 uint32_t build_node(ReceiverTree& tree, const Hierarchy& h, const std::vector<Vec3>& centroid,
                     uint32_t first, uint32_t count) {
   const Triangles& t = h.triangles;

@@ -42,17 +42,6 @@ bool may_receive(const SolverState& s, size_t p, const ShotSource& src) {
   return glm::dot(src.box.center() - c[0], n) + glm::dot(half, glm::abs(n)) > 0.0f;
 }
 
-namespace {
-
-// Whether some point of triangle p may gather under the shot's roulette.
-bool roulette_reaches(const Triangles& t, size_t p, const ShotSource& src) {
-  Aabb b;
-  for (const Vec3& q : t.corners[p]) b.extend(q);
-  return src.roulette_reaches(b);
-}
-
-}  // namespace
-
 void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,
                         bool major) {
   const Triangles& tris = s.hierarchy->triangles;
@@ -84,7 +73,8 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
   auto consider = [&](size_t n, auto&& triangle) {
     tbb::parallel_for(size_t(0), n, [&](size_t i) {
       const size_t p = triangle(i);
-      received[p] = s.owns(p) && may_receive(s, p, src) && roulette_reaches(tris, p, src);
+      received[p] = s.owns(p) && may_receive(s, p, src) &&
+                    src.roulette_reaches(triangle_box(tris.corners[p]));
     });
     for (size_t i = 0; i < n; ++i)
       if (received[triangle(i)]) receivers.push_back(uint32_t(triangle(i)));

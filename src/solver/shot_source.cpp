@@ -201,13 +201,14 @@ void aim_roulette(ShotSource& src, float level, int64_t shot) {
   if (!(peak > 0.0f && peak < std::numeric_limits<float>::max())) return;  // nothing, NaN, inf
   src.roulette_peak = std::min(1.0f, peak / level);
   src.roulette_reach2 = peak * src.area / (std::numbers::pi_v<float> * level);
-  // splitmix64 of the shot number: a draw in (0, 1), never 0 nor 1 (23 bits plus a half, exact
-  // in a float: at most 1 - 2^-24; with 24 bits the largest rounded up to 1).
+  // splitmix64 of the shot number.
   uint64_t z = uint64_t(shot) + 0x9e3779b97f4a7c15ull;
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
   z ^= z >> 31;
-  src.roulette_draw = (float(z >> 41) + 0.5f) * 0x1p-23f;
+  src.roulette_draw = open_unit_draw(z);
 }
+
+float open_unit_draw(uint64_t bits) { return (float(bits >> 41) + 0.5f) * 0x1p-23f; }
 
 }  // namespace rad

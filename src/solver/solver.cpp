@@ -81,24 +81,10 @@ std::optional<Shooter> choose_shooter(const SolverState& s) {
   const bool overshoot = s.options.overshoot;
   const double amb = overshoot ? ambient_estimate(s) : 0.0;
   const ExpectedCost expected_cost(s);
-  const Triangles& tris = s.hierarchy->triangles;
   const Clusters& k = s.clusters;
+  // Mostly a pass over the clusters, not the polygons (ClusterUnshot).
   auto shooting = [&](size_t c) {
-    const ClusterUnshot& u = s.cluster_unshot[c];
-    if (!overshoot) return u.magnitude;
-    // Beyond every polygon's break the sum is linear in the ambient (most clusters, most
-    // shots): a pass over the clusters, not the polygons.
-    if (amb >= u.hi) return u.rest + (u.sum + u.rho_area * amb);
-    if (amb <= u.lo) return u.rest - (u.sum + u.rho_area * amb);
-    double e = 0.0;
-    for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) {
-      const uint32_t p = k.polygons[j];
-      const double rho = mean_component(s.material_of(p).reflectance);
-      // The share changes the sum; what cancels between the channels stays to shoot.
-      const UnshotEnergy& u = s.unshot_energy[p];
-      e += std::abs(u.sum + rho * amb * double(tris.area[p])) + u.magnitude - std::abs(u.sum);
-    }
-    return e;
+    return overshoot ? cluster_shooting_energy(s, c, amb) : s.cluster_unshot[c].magnitude;
   };
   using Best = std::pair<double, int32_t>;  // (score, -index): the larger wins, ties lowest
   const Best found = tbb::parallel_reduce(

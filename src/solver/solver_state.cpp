@@ -107,16 +107,20 @@ DVec3 mean_reflectance(const SolverState& s) {
 DVec3 interreflection(const DVec3& mean_rho) {
   return 1.0 / (1.0 - glm::min(mean_rho, DVec3(0.999)));
 }
+
+// r_p of ClusterUnshot: polygon p's mean reflectance times its area.
+double rho_area(const SolverState& s, uint32_t p) {
+  return mean_component(s.material_of(p).reflectance) * double(s.hierarchy->triangles.area[p]);
+}
 }  // namespace
 
 ClusterUnshot cluster_unshot(const SolverState& s, size_t c) {
   ClusterUnshot k;
   k.lo = std::numeric_limits<double>::infinity(), k.hi = -k.lo;
-  const Triangles& tris = s.hierarchy->triangles;
   for (uint32_t j = s.clusters.first[c]; j < s.clusters.first[c + 1]; ++j) {
     const uint32_t p = s.clusters.polygons[j];
     const UnshotEnergy& u = s.unshot_energy[p];
-    const double r = mean_component(s.material_of(p).reflectance) * double(tris.area[p]);
+    const double r = rho_area(s, p);
     k.magnitude += u.magnitude;
     k.rest += u.magnitude - std::abs(u.sum);
     if (r > 0.0) {
@@ -127,6 +131,20 @@ ClusterUnshot cluster_unshot(const SolverState& s, size_t c) {
     }
   }
   return k;
+}
+
+double cluster_shooting_energy(const SolverState& s, size_t c, double a) {
+  const ClusterUnshot& k = s.cluster_unshot[c];
+  if (a >= k.hi) return k.rest + (k.sum + k.rho_area * a);
+  if (a <= k.lo) return k.rest - (k.sum + k.rho_area * a);
+  double e = 0.0;
+  for (uint32_t j = s.clusters.first[c]; j < s.clusters.first[c + 1]; ++j) {
+    const uint32_t p = s.clusters.polygons[j];
+    // The share changes the sum; what cancels between the channels stays to shoot.
+    const UnshotEnergy& u = s.unshot_energy[p];
+    e += std::abs(u.sum + rho_area(s, p) * a) + u.magnitude - std::abs(u.sum);
+  }
+  return e;
 }
 
 void update_unshot_totals(SolverState& s) {

@@ -239,6 +239,10 @@ void find_edge_midpoints(SolverState& s, std::span<const uint32_t> initial_verti
 /// Cluster c's unshot energy from its polygons', in order.
 ClusterUnshot cluster_unshot(const SolverState& s, size_t c);
 
+/// What cluster c shoots with overshooting at ambient a (ClusterUnshot's sum): from
+/// s.cluster_unshot where a lies beyond every break, else polygon by polygon.
+double cluster_shooting_energy(const SolverState& s, size_t c, double a);
+
 /// Sets the unshot totals, every cluster's energy and the interreflection factor from
 /// unshot_energy and the materials after they changed. The
 /// totals are summed in fixed point (2^-64 of the emitted energy), which is exact and so the
