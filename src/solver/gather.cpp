@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cstring>
 #include <numbers>
 #include <optional>
@@ -285,9 +286,10 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
 Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid,
                         const ShotSource& src, const VisibilityBackend& vis,
                         const GatherSettings& st, GatherScratch& scratch, const VertexRays* kept) {
-  // The roulette looks at the vertex itself, not the point moved inside its polygon: the
-  // polygons sharing a vertex make the same choice for it.
-  const float w = src.roulette_weight(x_vertex);
+  // The roulette looks at the vertex itself, not the point moved inside its polygon: coplanar
+  // polygons sharing a vertex make the same choice for it. Its cosine bounds allow for the move.
+  assert(st.inset <= kRouletteSlack);
+  const float w = src.roulette_weight(x_vertex, n, st.inset * glm::length(centroid - x_vertex));
   if (w == 0.0f) {
     ++scratch.stats.roulette;
     return Vec3(0.0f);

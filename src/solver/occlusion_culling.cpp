@@ -502,9 +502,9 @@ ShotOccluders choose_occluders(const OcclusionCulling& c, const ShotSource& src)
   std::vector<double> score(c.occluders.size(), 0.0);
   tbb::parallel_for(size_t(0), c.occluders.size(), [&](size_t k) {
     const Occluder& o = c.occluders[k];
-    // Beyond the roulette's reach it hides only what the shot skips anyway: the points it
-    // reaches lie nearer, and so do the segments to them.
-    if (!src.roulette_reaches(o.box)) return;
+    // Beyond the roulette's reach at any height and facing it hides only what the shot skips
+    // anyway: the points it reaches lie nearer, and so do the segments to them.
+    if (!src.roulette_within(o.box)) return;
     const double d = glm::dot(centre - o.origin, o.normal);
     if (std::abs(d) <= glm::dot(half, glm::abs(o.normal)) + 2.0 * c.margin) return;
     if (!(o.hides_behind & (d > 0.0 ? 1 : 2))) return;

@@ -73,8 +73,9 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
   auto consider = [&](size_t n, auto&& triangle) {
     tbb::parallel_for(size_t(0), n, [&](size_t i) {
       const size_t p = triangle(i);
-      received[p] = s.owns(p) && may_receive(s, p, src) &&
-                    src.roulette_reaches(triangle_box(tris.corners[p]));
+      received[p] =
+          s.owns(p) && may_receive(s, p, src) &&
+          src.roulette_reaches(triangle_box(tris.corners[p]), tris.corners[p][0], tris.normal[p]);
     });
     for (size_t i = 0; i < n; ++i)
       if (received[triangle(i)]) receivers.push_back(uint32_t(triangle(i)));

@@ -179,10 +179,40 @@ ShotSource make_shot_source(const SolverState& s, int32_t c) {
   return src;
 }
 
+namespace {
+// Whether a point of box b may gather from src (roulette_weight): b's nearest point to the
+// source, at most `top` above a planar source's plane, its tangent plane `facing` below the
+// source box's farthest corner at most (each grown by the slack of an evaluated point).
+bool reaches(const ShotSource& src, const Aabb& b, float top, float facing) {
+  if (!(src.roulette_draw > 0.0f)) return true;
+  const Vec3 gap = glm::max(glm::max(src.box.lo - b.hi, b.lo - src.box.hi), Vec3(0.0f));
+  const float slack = kRouletteSlack * glm::length(b.extent());
+  const float q = src.roulette_q(glm::dot(gap, gap), top + slack, facing + slack);
+  return q >= 1.0f || q > src.roulette_draw;
+}
+
+// The highest point of b above a planar source's plane.
+float top_of(const ShotSource& src, const Aabb& b) {
+  return src.height(b.center()) + glm::dot(b.extent() * 0.5f, glm::abs(src.axis));
+}
+}  // namespace
+
 bool ShotSource::roulette_reaches(const Aabb& b) const {
+  return reaches(*this, b, top_of(*this, b), std::numeric_limits<float>::infinity());
+}
+
+bool ShotSource::roulette_reaches(const Aabb& b, const Vec3& corner, const Vec3& n) const {
+  // Every point of a flat triangle has the same tangent plane.
+  return reaches(*this, b, top_of(*this, b), facing(corner, n));
+}
+
+bool ShotSource::roulette_within(const Aabb& b) const {
+  // reaches() with both cosines 1, without its square roots: the occluders chosen for a shot
+  // are all looked at this way, every shot.
   if (!(roulette_draw > 0.0f)) return true;
   const Vec3 gap = glm::max(glm::max(box.lo - b.hi, b.lo - box.hi), Vec3(0.0f));
-  const float q = roulette_q(glm::dot(gap, gap));
+  const float d2 = glm::dot(gap, gap);
+  const float q = d2 * roulette_peak > roulette_reach2 ? roulette_reach2 / d2 : roulette_peak;
   return q >= 1.0f || q > roulette_draw;
 }
 
@@ -190,8 +220,7 @@ void aim_roulette(ShotSource& src, float level, int64_t shot) {
   src.roulette_draw = 0.0f;
   if (!(level > 0.0f)) return;
   // The gain at x is at most the largest unshot radiosity on the source times its form factor,
-  // itself at most min(1, A / (pi d^2)) (every cosine at most 1, every point of the source at
-  // least d away).
+  // itself at most min(1, A / (pi d^2)) times the cosines' bounds (roulette_q).
   float peak = 0.0f;
   for (const SampleLanes* l : {&src.sample, &src.fine_sample}) {
     for (const std::vector<float>* c : {&l->r, &l->g, &l->b}) {

@@ -1,7 +1,10 @@
 // A shooting cluster frozen for one shot: its geometry and its samples' unshot radiosity.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "core/aabb.h"
@@ -66,28 +69,54 @@ struct ShotSource {
   SampleLanes fine_sample;
   std::vector<uint32_t> fine_group_parent;
   // Russian roulette (Arvo and Kirk, "Particle transport and image synthesis", SIGGRAPH 1990)
-  // over the receivers: where a point's gain is bounded by `level` times
-  // q(x) = min(peak, reach2 / d^2) < 1 (d: its distance to the source's box), it gathers only
-  // when q(x) > draw and divides its gain by q(x). One draw per shot, so a receiver's vertices
-  // all gather or none do, and a box beyond reach gathers nothing (the shot skips it).
-  // draw = 0: every point gathers, as is.
+  // over the receivers: where a point's gain is bounded by `level` times q(x) < 1 (roulette_q),
+  // it gathers only when q(x) > draw and divides its gain by q(x). One draw per shot, so a
+  // receiver's vertices all gather or none do, and a box beyond reach gathers nothing (the shot
+  // skips it). draw = 0: every point gathers, as is.
   float roulette_draw = 0.0f, roulette_peak = 1.0f, roulette_reach2 = 0.0f;
 
-  /// q at squared distance d2 from the box.
-  float roulette_q(float d2) const {
-    return d2 * roulette_peak > roulette_reach2 ? roulette_reach2 / d2 : roulette_peak;
+  /// q of a point at squared distance d2 from the source's box, at most h above a planar
+  /// source's plane, whose tangent plane has the box's farthest corner m above it (h, m: +inf
+  /// where not known). The form factor is at most A cos_s cos_r / (pi d^2), with cos_s <= h / d
+  /// (every point of a planar source lies at height h below x and at least d away) and
+  /// cos_r <= m / d: beside a floor or a ceiling, or on one, a far point gets little of it.
+  float roulette_q(float d2, float h, float m) const {
+    if (!(d2 > 0.0f)) return roulette_peak;
+    const float d = std::sqrt(d2);
+    const float cosines =
+        std::min(1.0f, std::max(h, 0.0f) / d) * std::min(1.0f, std::max(m, 0.0f) / d);
+    return std::min(roulette_peak, roulette_reach2 / d2 * cosines);
   }
-  /// The factor point x's gain is multiplied by: 0 where it does not gather, 1 / q(x) where the
-  /// roulette applies, else 1.
-  float roulette_weight(const Vec3& x) const {
+  /// The factor the gain at point x with normal n is multiplied by: 0 where it does not gather,
+  /// 1 / q(x) where the roulette applies, else 1. `slack` bounds how far the point the gain is
+  /// evaluated at lies from x (the gather's inset; at most kRouletteSlack times its triangle's
+  /// extent).
+  float roulette_weight(const Vec3& x, const Vec3& n, float slack) const {
     if (!(roulette_draw > 0.0f)) return 1.0f;
     const Vec3 gap = glm::max(glm::max(box.lo - x, x - box.hi), Vec3(0.0f));
-    const float q = roulette_q(glm::dot(gap, gap));
+    const float q = roulette_q(glm::dot(gap, gap), height(x) + slack, facing(x, n) + slack);
     return q >= 1.0f ? 1.0f : (q > roulette_draw ? 1.0f / q : 0.0f);
   }
-  /// False when no point of `b` gathers (roulette_weight is 0 throughout).
+  /// False when no point of `b` gathers (roulette_weight is 0 throughout, whatever its normal).
   bool roulette_reaches(const Aabb& b) const;
+  /// False when no point of a triangle (its box `b`, a corner, its normal `n`) gathers.
+  bool roulette_reaches(const Aabb& b, const Vec3& corner, const Vec3& n) const;
+  /// False when every point of `b` is farther from the source than its reach at any height and
+  /// facing (the roulette's bound on distance alone).
+  bool roulette_within(const Aabb& b) const;
+  /// How far x lies above a planar source's plane (+inf for a curved one).
+  float height(const Vec3& x) const {
+    return planar ? glm::dot(x - centroid, axis) : std::numeric_limits<float>::infinity();
+  }
+  /// How far the source box's farthest corner lies above the plane through x with normal n.
+  float facing(const Vec3& x, const Vec3& n) const {
+    return glm::dot(box.center() - x, n) + glm::dot(box.extent() * 0.5f, glm::abs(n));
+  }
 };
+
+/// How far the point a gain is evaluated at may lie from its vertex, in extents of the vertex's
+/// triangle: box tests (roulette_reaches) grow their bound by as much.
+inline constexpr float kRouletteSlack = 1e-3f;
 
 /// The number of samples per side m (n = m * m) a source of box diagonal `extent` gets: the
 /// least m in the options' range whose spacing (extent / m) is within the initial mesh's size.

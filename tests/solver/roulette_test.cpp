@@ -54,7 +54,7 @@ TEST(Roulette, DrawsLieInTheOpenUnitIntervalAndDependOnTheShotOnly) {
   EXPECT_LT(open_unit_draw(~uint64_t(0) >> 1), open_unit_draw(~uint64_t(0)));
   aim_roulette(a, 0.0f, 7);
   EXPECT_EQ(a.roulette_draw, 0.0f) << "level 0: off";
-  EXPECT_EQ(a.roulette_weight(Vec3(1000.0f)), 1.0f);
+  EXPECT_EQ(a.roulette_weight(Vec3(1000.0f), Vec3(0, 0, 1), 0.0f), 1.0f);
 }
 
 TEST(Roulette, AFarPointsWeightIsOneOnAverageAndNearPointsAlwaysGather) {
@@ -63,15 +63,16 @@ TEST(Roulette, AFarPointsWeightIsOneOnAverageAndNearPointsAlwaysGather) {
   // Unit unshot radiosity, area 1: the gain bound at distance d is 1 / (pi d^2). A level that
   // puts the reach at distance 2.
   const float level = 1.0f / (std::numbers::pi_v<float> * 4.0f);
-  // Distances 1.5 and sqrt(40) below the light's plane.
+  // 1.5 and sqrt(40) straight below the light, facing it: both cosines 1.
   const Vec3 near(0.5f, 0.5f, -0.5f), far(0.5f, 0.5f, 1.0f - 2.0f * std::sqrt(10.0f));
+  const Vec3 up(0.0f, 0.0f, 1.0f);
   double sum = 0.0;
   int gathered = 0;
   const int draws = 100000;
   for (int64_t shot = 1; shot <= draws; ++shot) {
     aim_roulette(src, level, shot);
-    ASSERT_EQ(src.roulette_weight(near), 1.0f);
-    const float w = src.roulette_weight(far);
+    ASSERT_EQ(src.roulette_weight(near, up, 0.0f), 1.0f);
+    const float w = src.roulette_weight(far, up, 0.0f);
     sum += w;
     gathered += w > 0.0f;
   }
@@ -80,11 +81,38 @@ TEST(Roulette, AFarPointsWeightIsOneOnAverageAndNearPointsAlwaysGather) {
   EXPECT_NEAR(sum / draws, 1.0, 0.04);
 }
 
+TEST(Roulette, APointsGainIsAtMostTheLevelTimesItsQ) {
+  // q bounds the gain by the distance and both cosines (roulette_q): were a bound wrong, a
+  // point would gather more than the level at once, or be skipped where it gains.
+  FarFloor f;
+  const ShotSource plain = f.light();
+  const GatherSettings g = gather_settings(f.s);
+  ShotSource src = plain;
+  const float level = 1e-3f;
+  aim_roulette(src, level, 1);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-10.0f, 10.0f), z(0.05f, 0.95f), c(-1.0f, 1.0f);
+  GatherScratch sc;
+  int bounded = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const Vec3 x(u(rng), u(rng), z(rng));
+    const Vec3 n = glm::normalize(Vec3(c(rng), c(rng), c(rng)) + Vec3(0.0f, 0.0f, 1e-3f));
+    const float gain = gather_from_source(x, n, x, plain, *f.vis, g, sc).x;
+    const Vec3 gap = glm::max(glm::max(src.box.lo - x, x - src.box.hi), Vec3(0.0f));
+    const float q = src.roulette_q(glm::dot(gap, gap), src.height(x), src.facing(x, n));
+    if (q >= 1.0f) continue;
+    ++bounded;
+    ASSERT_LE(gain, level * q * 1.02f + 1e-9f) << "at " << x.x << " " << x.y << " " << x.z;
+    if (q == 0.0f) EXPECT_EQ(gain, 0.0f);
+  }
+  EXPECT_GT(bounded, 3000);
+}
+
 TEST(Roulette, ABoxBeyondReachHoldsNoPointThatGathers) {
   FarFloor f;
   ShotSource src = f.light();
   std::mt19937 rng(5);
-  std::uniform_real_distribution<float> u(-30.0f, 30.0f), size(0.0f, 5.0f);
+  std::uniform_real_distribution<float> u(-30.0f, 30.0f), size(0.0f, 5.0f), c(-1.0f, 1.0f);
   int beyond = 0, within = 0;
   for (int i = 0; i < 2000; ++i) {
     aim_roulette(src, 1e-3f, i + 1);
@@ -96,12 +124,15 @@ TEST(Roulette, ABoxBeyondReachHoldsNoPointThatGathers) {
     for (int k = 0; k < 8; ++k) {
       const Vec3 t(float(k & 1), float((k >> 1) & 1), float((k >> 2) & 1));
       const Vec3 x = box.lo + (box.hi - box.lo) * t;
+      const Vec3 n = glm::normalize(Vec3(c(rng), c(rng), c(rng)) + Vec3(0.0f, 0.0f, 1e-3f));
+      // Whatever its normal, within the slack of a point inside its triangle.
+      const float slack = kRouletteSlack * glm::length(box.extent());
       if (!reaches) {
-        EXPECT_EQ(src.roulette_weight(x), 0.0f);
+        EXPECT_EQ(src.roulette_weight(x, n, slack), 0.0f);
       }
       Aabb point;
       point.extend(x);
-      EXPECT_EQ(src.roulette_reaches(point), src.roulette_weight(x) > 0.0f);
+      EXPECT_EQ(src.roulette_reaches(point, x, n), src.roulette_weight(x, n, 0.0f) > 0.0f);
     }
   }
   EXPECT_GT(beyond, 100);
@@ -133,15 +164,17 @@ TEST(Roulette, TheFloorGainsTheSameOnAverageAndAShotSkipsWhatItDoesNotReach) {
   // The level where the reach is 3: the floor runs to 40.
   const float level = 1.0f / (std::numbers::pi_v<float> * 9.0f);
   double mean = 0.0;
-  const int shots = 3000;
+  const int shots = 30000;
   for (int64_t shot = 1; shot <= shots; ++shot) {
     ShotSource src = plain;
     aim_roulette(src, level, shot);
     mean += floor_gain(src) / shots;
   }
   std::printf("far floor gain: %.6f without the roulette, %.6f on average with it\n", exact, mean);
-  // 3%: the mean of 3,000 draws; without the division by q it comes out 13% short.
-  EXPECT_NEAR(mean, exact, 0.03 * exact);
+  // 5%: the mean of 30,000 draws (over other runs of 30,000 its spread is about 2%, the gain
+  // being mostly that of rare far points with large weights); without the division by q it
+  // comes out 90% short.
+  EXPECT_NEAR(mean, exact, 0.05 * exact);
 
   // One shot: its receivers are the floor triangles whose box it reaches, and the others keep
   // nothing of it.
@@ -154,8 +187,10 @@ TEST(Roulette, TheFloorGainsTheSameOnAverageAndAShotSkipsWhatItDoesNotReach) {
   for (size_t p = 0; p < floor_triangles; ++p) {
     Aabb b;
     for (const Vec3& x : f.h.triangles.corners[p]) b.extend(x);
-    reached += src.roulette_reaches(b);
-    EXPECT_EQ(bool(f.s.received[p]), src.roulette_reaches(b)) << "triangle " << p;
+    const bool reaches =
+        src.roulette_reaches(b, f.h.triangles.corners[p][0], f.h.triangles.normal[p]);
+    reached += reaches;
+    EXPECT_EQ(bool(f.s.received[p]), reaches) << "triangle " << p;
   }
   EXPECT_GT(reached, 0u);
   EXPECT_LT(reached, floor_triangles / 4);
