@@ -6,7 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
+#include <random>
 
 #include "scene_builder.h"
 #include "scenegen/scenegen.h"
@@ -62,6 +64,35 @@ TEST(Solver, AShooterWhoseShotsGatherAtMoreVerticesWaitsForMoreEnergy) {
   const std::optional<Shooter> x = choose_shooter(s);
   ASSERT_TRUE(x);
   EXPECT_NE(x->cluster, most->cluster);
+}
+
+TEST(Solver, TheShooterHasTheMostEnergyPerCostOfAllClusters) {
+  // choose_shooter passes over the clusters that cannot win by a bound on what they shoot: its
+  // choice must be the one a look at every cluster makes, at every stage of a solve.
+  const Hierarchy h = build_hierarchy(generate_scene(SceneKind::FurnishedRoom, 1000, 2));
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  SolverState s = make_solver_state(h, {});
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> cost(1.0, 5000.0);
+  for (int shot = 0; shot < 60; ++shot) {
+    if (shot % 5 == 0) {
+      // Every cluster's cost known: it is expected at its cost plus the overhead of a shot.
+      std::vector<double> costs(s.clusters.size());
+      for (double& c : costs) c = std::floor(cost(rng));
+      s.cluster_cost = costs;
+      const double amb = ambient_estimate(s);
+      int32_t best = -1;
+      double most = 0.0;
+      for (size_t c = 0; c < s.clusters.size(); ++c) {
+        const double score = cluster_shooting_energy(s, c, amb) / (costs[c] + 1000.0);
+        if (score > most) most = score, best = int32_t(c);
+      }
+      const std::optional<Shooter> chosen = choose_shooter(s);
+      ASSERT_TRUE(chosen);
+      EXPECT_EQ(chosen->cluster, best) << "after " << shot << " shots";
+    }
+    ASSERT_TRUE(step(s, *vis));
+  }
 }
 
 TEST(Solver, ASolveWithoutEditsLogsItsMajorShotsOnly) {
