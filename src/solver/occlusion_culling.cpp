@@ -475,6 +475,7 @@ OcclusionCulling make_occlusion_culling(const Hierarchy& h, float shadow_offset)
     o.hides_behind = uint8_t((mid - reach < -c.margin ? 1 : 0) | (mid + reach > c.margin ? 2 : 0));
     c.occluders[k] = std::move(o);
   });
+  for (const Occluder& o : c.occluders) c.occluder_boxes.push_back(o.box);
   c.tree = make_receiver_tree(h);
   return c;
 }
@@ -499,12 +500,14 @@ ShotOccluders choose_occluders(const OcclusionCulling& c, const ShotSource& src)
   if (ends.empty()) ends = src.box;
   so.source = ends;
   const DVec3 centre(ends.center()), half(ends.extent() * 0.5f);
-  std::vector<double> score(c.occluders.size(), 0.0);
-  tbb::parallel_for(size_t(0), c.occluders.size(), [&](size_t k) {
-    const Occluder& o = c.occluders[k];
-    // Beyond the roulette's reach at any height and facing it hides only what the shot skips
-    // anyway: the points it reaches lie nearer, and so do the segments to them.
-    if (!src.roulette_within(o.box)) return;
+  // Beyond the roulette's reach at any height and facing an occluder hides only what the shot
+  // skips anyway: the points it reaches lie nearer, and so do the segments to them.
+  std::vector<uint32_t> near;
+  for (size_t k = 0; k < c.occluder_boxes.size(); ++k)
+    if (src.roulette_within(c.occluder_boxes[k])) near.push_back(uint32_t(k));
+  std::vector<double> score(near.size(), 0.0);
+  tbb::parallel_for(size_t(0), near.size(), [&](size_t i) {
+    const Occluder& o = c.occluders[near[i]];
     const double d = glm::dot(centre - o.origin, o.normal);
     if (std::abs(d) <= glm::dot(half, glm::abs(o.normal)) + 2.0 * c.margin) return;
     if (!(o.hides_behind & (d > 0.0 ? 1 : 2))) return;
@@ -514,11 +517,11 @@ ShotOccluders choose_occluders(const OcclusionCulling& c, const ShotSource& src)
       const double a = double(o.part_area[q]), r2 = glm::dot(to, to) + a;
       sum += a * std::abs(glm::dot(to, o.normal)) / (r2 * std::sqrt(r2));
     }
-    score[k] = sum;
+    score[i] = sum;
   });
   std::vector<std::pair<double, uint32_t>> scored;
-  for (size_t k = 0; k < score.size(); ++k)
-    if (score[k] > 0.0) scored.push_back({-score[k], uint32_t(k)});
+  for (size_t i = 0; i < score.size(); ++i)
+    if (score[i] > 0.0) scored.push_back({-score[i], near[i]});
   const size_t keep = std::min(scored.size(), kCandidates);
   std::partial_sort(scored.begin(), scored.begin() + long(keep), scored.end());
   for (size_t k = 0; k < keep && so.chosen.size() < kOccluders; ++k) {

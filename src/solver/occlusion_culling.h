@@ -50,6 +50,8 @@ struct Occluder {
 /// its triangles.
 struct OcclusionCulling {
   std::vector<Occluder> occluders;
+  /// occluders[k].box, side by side: every shot looks at them all (the roulette's reach).
+  std::vector<Aabb> occluder_boxes;
   ReceiverTree tree;
   /// How far every point a shadow ray may start or end lies from its polygon (the shadow offset
   /// and the inset, with room for rounding): boxes grow by it and crossings keep clear of edges.
