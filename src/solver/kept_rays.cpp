@@ -1,5 +1,8 @@
 #include "solver/kept_rays.h"
 
+#include <algorithm>
+#include <cassert>
+
 #include "solver/solver_state.h"
 
 namespace rad {
@@ -49,16 +52,30 @@ KeptRays* prepare_kept_rays(SolverState& s, const ShotSource& src) {
     }
   }
   KeptRays& k = found == s.kept_rays.end() ? s.kept_rays[src.cluster] : found->second;
-  // The receivers and the samples are geometry too, but the answers are only good for the
-  // same list and the same samples.
-  if (k.words != words || k.moved.size() != src.sample_count || k.receivers != s.receivers) {
+  // The samples are geometry too, but the answers are only good for the same samples.
+  if (k.words != words || k.moved.size() != src.sample_count) {
     s.kept_rays_bytes -= k.bytes;
     k = KeptRays{};
     k.words = words;
-    k.receivers = s.receivers;
     k.moved.assign(src.sample_count, 0);
     k.end_x.assign(src.sample_count, 0.0f);
     k.end_y = k.end_x, k.end_z = k.end_x;
+  }
+  if (k.receivers != s.receivers) {
+    // Another list (the roulette's draw, a subdivided neighbour, an edit): the polygons on both
+    // keep their answers (a vertex's rays are the same segments), the others start untraced.
+    // Both lists are in index order.
+    assert(std::is_sorted(s.receivers.begin(), s.receivers.end()));
+    std::vector<std::vector<uint64_t>> answers(s.receivers.size());
+    size_t j = 0;
+    for (size_t i = 0; i < s.receivers.size(); ++i) {
+      while (j < k.receivers.size() && k.receivers[j] < s.receivers[i]) ++j;
+      if (j < k.receivers.size() && k.receivers[j] == s.receivers[i]) {
+        answers[i] = std::move(k.answers[j]);
+      }
+    }
+    k.answers = std::move(answers);
+    k.receivers = s.receivers;
   }
   ++k.epoch;
   for (size_t g = 0; g < src.sample_count; ++g) {
