@@ -78,15 +78,19 @@ struct ShotSource {
   /// q of a point at squared distance d2 from the source's box, at most h above a planar
   /// source's plane, whose tangent plane has the box's farthest corner m above it (h, m: +inf
   /// where not known). The form factor is at most A cos_s cos_r / (pi d^2), with cos_s <= h / d
-  /// (every point of a planar source lies at height h below x and at least d away) and
-  /// cos_r <= m / d: beside a floor or a ceiling, or on one, a far point gets little of it.
+  /// (every point of a planar source lies h below x, at least d away) and cos_r <= m / d: beside
+  /// a floor or a ceiling, or on one, a far point gets little. Near the source (its bound on
+  /// distance alone at least kCertain times the level) a point gathers for certain, cosines or
+  /// not: the roulette's noise stays off the receivers that gain most from a shot.
   float roulette_q(float d2, float h, float m) const {
     if (!(d2 > 0.0f)) return roulette_peak;
+    if (roulette_peak >= 1.0f && roulette_reach2 >= kCertain * d2) return 1.0f;
     const float d = std::sqrt(d2);
     const float cosines =
         std::min(1.0f, std::max(h, 0.0f) / d) * std::min(1.0f, std::max(m, 0.0f) / d);
     return std::min(roulette_peak, roulette_reach2 / d2 * cosines);
   }
+  static constexpr float kCertain = 16.0f;
   /// The factor the gain at point x with normal n is multiplied by: 0 where it does not gather,
   /// 1 / q(x) where the roulette applies, else 1. `slack` bounds how far the point the gain is
   /// evaluated at lies from x (the gather's inset; at most kRouletteSlack times its triangle's
