@@ -75,7 +75,7 @@ KeptRays* prepare_kept_rays(SolverState& s, const ShotSource& src) {
       }
     }
     k.answers = std::move(answers);
-    k.receivers = s.receivers;
+    k.receivers = std::vector<uint32_t>(s.receivers);  // a fresh copy: no capacity left uncounted
   }
   ++k.epoch;
   for (size_t g = 0; g < src.sample_count; ++g) {
