@@ -33,6 +33,29 @@ struct Aabb {
   }
 };
 
+/// How far the box's highest point lies above the plane through `origin` with normal `n`
+/// (negative: the whole box below it).
+inline float highest_above(const Aabb& b, const Vec3& origin, const Vec3& n) {
+  return glm::dot(b.center() - origin, n) + glm::dot(b.extent() * 0.5f, glm::abs(n));
+}
+
+/// How far the box's lowest point lies above that plane.
+inline float lowest_above(const Aabb& b, const Vec3& origin, const Vec3& n) {
+  return glm::dot(b.center() - origin, n) - glm::dot(b.extent() * 0.5f, glm::abs(n));
+}
+
+/// The squared distance between two boxes (0 where they meet).
+inline float distance2(const Aabb& a, const Aabb& b) {
+  const Vec3 gap = glm::max(glm::max(a.lo - b.hi, b.lo - a.hi), Vec3(0.0f));
+  return glm::dot(gap, gap);
+}
+
+/// The squared distance from a box to a point (0 inside it).
+inline float distance2(const Aabb& a, const Vec3& p) {
+  const Vec3 gap = glm::max(glm::max(a.lo - p, p - a.hi), Vec3(0.0f));
+  return glm::dot(gap, gap);
+}
+
 /// The box of a triangle's corners.
 inline Aabb triangle_box(const std::array<Vec3, 3>& c) {
   Aabb b;

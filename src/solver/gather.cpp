@@ -127,8 +127,7 @@ namespace {
 std::optional<float> exact_form_factor(const Vec3& x, const Vec3& n, const ShotSource& src,
                                        int side, const KernelSums& sums) {
   if (side <= 0) return std::nullopt;
-  if (!src.planar &&
-      glm::dot(src.box.center() - x, n) - glm::dot(src.box.extent() * 0.5f, glm::abs(n)) <= 0.0f) {
+  if (!src.planar && lowest_above(src.box, x, n) <= 0.0f) {
     for (const Vec3& q : src.interior) {
       if (glm::dot(q - x, n) < 0.0f) return std::nullopt;
     }

@@ -553,10 +553,7 @@ void walk(const OcclusionCulling& c, const ShotSource& src, const ShotOccluders&
     stack.pop_back();
     const Aabb& b = tree.box[v.node];
     if (!src.roulette_reaches(b)) continue;
-    if (src.planar && glm::dot(b.center() - src.centroid, src.axis) +
-                              glm::dot(b.extent() * 0.5f, glm::abs(src.axis)) <=
-                          front)
-      continue;
+    if (src.planar && highest_above(b, src.centroid, src.axis) <= front) continue;
     if (v.mask != 0 && tree.cullable[v.node] && so.hidden(b, v.mask, last)) continue;
     if (tree.leaf(v.node)) {
       const uint32_t first = tree.first[v.node];

@@ -37,9 +37,7 @@ bool may_receive(const SolverState& s, size_t p, const ShotSource& src) {
   for (const Vec3& q : c) any_in_front |= receiver_side(src, q) >= 0;
   if (!any_in_front) return false;
   // The source's box against p's plane: its farthest corner in front.
-  const Vec3 n = t.normal[p];
-  const Vec3 half = src.box.extent() * 0.5f;
-  return glm::dot(src.box.center() - c[0], n) + glm::dot(half, glm::abs(n)) > 0.0f;
+  return highest_above(src.box, c[0], t.normal[p]) > 0.0f;
 }
 
 void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,

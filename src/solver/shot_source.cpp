@@ -185,15 +185,15 @@ namespace {
 // source box's farthest corner at most (each grown by the slack of an evaluated point).
 bool reaches(const ShotSource& src, const Aabb& b, float top, float facing) {
   if (!(src.roulette_draw > 0.0f)) return true;
-  const Vec3 gap = glm::max(glm::max(src.box.lo - b.hi, b.lo - src.box.hi), Vec3(0.0f));
-  const float slack = kRouletteSlack * glm::length(b.extent());
-  const float q = src.roulette_q(glm::dot(gap, gap), top + slack, facing + slack);
+  const float slack = kRouletteSlack * b.diagonal();
+  const float q = src.roulette_q(distance2(src.box, b), top + slack, facing + slack);
   return q >= 1.0f || q > src.roulette_draw;
 }
 
-// The highest point of b above a planar source's plane.
+// The highest point of b above a planar source's plane (+inf for a curved source).
 float top_of(const ShotSource& src, const Aabb& b) {
-  return src.height(b.center()) + glm::dot(b.extent() * 0.5f, glm::abs(src.axis));
+  return src.planar ? highest_above(b, src.centroid, src.axis)
+                    : std::numeric_limits<float>::infinity();
 }
 }  // namespace
 
@@ -210,8 +210,7 @@ bool ShotSource::roulette_within(const Aabb& b) const {
   // reaches() with both cosines 1, without its square roots: the occluders chosen for a shot
   // are all looked at this way, every shot.
   if (!(roulette_draw > 0.0f)) return true;
-  const Vec3 gap = glm::max(glm::max(box.lo - b.hi, b.lo - box.hi), Vec3(0.0f));
-  const float d2 = glm::dot(gap, gap);
+  const float d2 = distance2(box, b);
   const float q = d2 * roulette_peak > roulette_reach2 ? roulette_reach2 / d2 : roulette_peak;
   return q >= 1.0f || q > roulette_draw;
 }

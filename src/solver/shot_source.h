@@ -97,8 +97,7 @@ struct ShotSource {
   /// extent).
   float roulette_weight(const Vec3& x, const Vec3& n, float slack) const {
     if (!(roulette_draw > 0.0f)) return 1.0f;
-    const Vec3 gap = glm::max(glm::max(box.lo - x, x - box.hi), Vec3(0.0f));
-    const float q = roulette_q(glm::dot(gap, gap), height(x) + slack, facing(x, n) + slack);
+    const float q = roulette_q(distance2(box, x), height(x) + slack, facing(x, n) + slack);
     return q >= 1.0f ? 1.0f : (q > roulette_draw ? 1.0f / q : 0.0f);
   }
   /// False when no point of `b` gathers (roulette_weight is 0 throughout, whatever its normal).
@@ -113,9 +112,7 @@ struct ShotSource {
     return planar ? glm::dot(x - centroid, axis) : std::numeric_limits<float>::infinity();
   }
   /// How far the source box's farthest corner lies above the plane through x with normal n.
-  float facing(const Vec3& x, const Vec3& n) const {
-    return glm::dot(box.center() - x, n) + glm::dot(box.extent() * 0.5f, glm::abs(n));
-  }
+  float facing(const Vec3& x, const Vec3& n) const { return highest_above(box, x, n); }
 };
 
 /// How far the point a gain is evaluated at may lie from its vertex, in extents of the vertex's

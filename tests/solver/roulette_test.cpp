@@ -99,8 +99,7 @@ TEST(Roulette, APointsGainIsAtMostTheLevelTimesItsQ) {
     const Vec3 x(u(rng), u(rng), z(rng));
     const Vec3 n = glm::normalize(Vec3(c(rng), c(rng), c(rng)) + Vec3(0.0f, 0.0f, 1e-3f));
     const float gain = gather_from_source(x, n, x, plain, *f.vis, g, sc).x;
-    const Vec3 gap = glm::max(glm::max(src.box.lo - x, x - src.box.hi), Vec3(0.0f));
-    const float q = src.roulette_q(glm::dot(gap, gap), src.height(x), src.facing(x, n));
+    const float q = src.roulette_q(distance2(src.box, x), src.height(x), src.facing(x, n));
     if (q >= 1.0f) continue;
     ++bounded;
     ASSERT_LE(gain, level * q * 1.02f + 1e-9f) << "at " << x.x << " " << x.y << " " << x.z;
