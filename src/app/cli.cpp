@@ -4,14 +4,18 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <iostream>
+#include <memory>
 
 #include "core/error.h"
 #include "core/memory.h"
 #include "export/image_render.h"
+#include "run/report.h"
 
 namespace rad {
 
@@ -55,12 +59,12 @@ struct SceneReading {
     try {
       for (const std::string& e : emit) in.model.emit.push_back(parse_emit_rule(e));
     } catch (const Error& e) {
-      throw CLI::ValidationError("--emit", e.what());
+      throw CLI::ValidationError("--emit", e.message());
     }
     try {
       if (!hierarchy.empty()) in.hierarchy = parse_hierarchy_mode(hierarchy);
     } catch (const Error& e) {
-      throw CLI::ValidationError("--hierarchy", e.what());
+      throw CLI::ValidationError("--hierarchy", e.message());
     }
   }
 };
@@ -95,8 +99,9 @@ struct Solving {
                    "element size (scene size / 16) or this many; give both to fix the count")
         ->capture_default_str();
     app.add_option("--form-factor", method,
-                   "analytic (exact unoccluded form factor x sampled visibility) or samples "
-                   "(EQ 7 sums, as the original)")
+                   "analytic (the exact unoccluded form factor times the visibility the samples "
+                   "see) or samples (as the original: each sample a small disc, their form "
+                   "factors summed)")
         ->capture_default_str();
     app.add_option("--threshold", o.subdivision_threshold,
                    "Subdivision limit: split where vertices differ by more than this fraction of "
@@ -130,7 +135,11 @@ struct Solving {
                  "their share of the ambient term, which converges in fewer shots)");
   }
   void apply(RunOptions& r) const {
-    r.backend = parse_backend_kind(backend);
+    try {
+      r.backend = parse_backend_kind(backend);
+    } catch (const Error& e) {
+      throw CLI::ValidationError("--backend", e.message());
+    }
     if (method == "analytic") {
       r.solver.method = FormFactorMethod::Analytic;
     } else if (method == "samples") {
@@ -182,11 +191,15 @@ struct Showing {
     app.add_option("--size", size, "Image size WxH in pixels")->capture_default_str();
   }
   void apply(OutputOptions& o) const {
-    o.tonemap = parse_tone_curve(tonemap);
+    try {
+      o.tonemap = parse_tone_curve(tonemap);
+    } catch (const Error& e) {
+      throw CLI::ValidationError("--tonemap", e.message());
+    }
     try {
       if (!camera.empty()) o.camera = parse_camera(camera);
     } catch (const Error& e) {
-      throw CLI::ValidationError("--camera", e.what());
+      throw CLI::ValidationError("--camera", e.message());
     }
     char x = 0, end = 0;
     if (std::sscanf(size.c_str(), "%d%c%d%c", &o.image_width, &x, &o.image_height, &end) != 3 ||
@@ -208,35 +221,78 @@ void apply_max_memory(const std::string& text, size_t& bytes) {
   try {
     if (!text.empty()) bytes = parse_byte_size(text);
   } catch (const Error& e) {
-    throw CLI::ValidationError("--max-memory", e.what());
+    throw CLI::ValidationError("--max-memory", e.message());
   }
 }
 
 const char* const kOverview =
     "rad: diffuse interreflection (radiosity) by progressive shooting with ray-traced\n"
     "vertex-to-source form factors and adaptive subdivision.\n\n"
-    "  rad [options] SCENE.des OUTPUT.ply      solve and write every vertex's colour\n"
-    "  rad --check SCENE.des                   parse, validate and summarise only\n"
-    "  rad --cross-check BACKEND SCENE.des     solve with --backend and BACKEND; report\n"
+    "  rad [options] SCENE OUTPUT              solve and write every vertex's colour\n"
+    "  rad --check SCENE                       parse, validate and summarise only\n"
+    "  rad --cross-check BACKEND SCENE         solve with --backend and BACKEND; report\n"
     "                                          every disagreement (rays and radiosity)\n"
-    "  rad batch OUTDIR SCENE... [options]     solve many scenes (SCENE may be a .txt list\n"
-    "                                          of .des files); outputs and stats in OUTDIR;\n"
-    "                                          rad batch --help\n"
-    "  rad convert IN OUT                      the scene itself in another format (.des,\n"
-    "                                          .obj, .gltf, .glb, .ply); rad convert --help\n"
-    "  rad serve SCENE.des [--port P] [--host H] [--output FILE]\n"
-    "                                          solve in the background and watch, edit and\n"
-    "                                          export it in a browser (loopback by default);\n"
-    "                                          Ctrl-C stops and writes --output/--image;\n"
-    "                                          rad serve --help\n";
+    "  rad batch OUTDIR SCENE... [options]     solve many scenes; rad batch --help\n"
+    "  rad serve SCENE [options]               solve in the background and watch, edit and\n"
+    "                                          export it in a browser; rad serve --help\n"
+    "  rad convert IN OUT                      the scene itself in another format;\n"
+    "                                          rad convert --help\n\n"
+    "SCENE is a description (.des) or a model (.obj, .ply, .gltf, .glb; name its lamps with\n"
+    "--emit). OUTPUT is a mesh: .ply, .off, .obj, .gltf or .glb.\n\n"
+    "Example:\n"
+    "  rad scenes/cornell_box.des box.ply --image box.png --stats-json box.json\n";
+
+const char* const kBatchHelp =
+    "rad batch: many scenes solved with the same options. Each scene's outputs are named\n"
+    "after it in OUTDIR, one per --formats extension, with its statistics (NAME.json) and a\n"
+    "row in OUTDIR/batch.json. A scene whose outputs are complete from an earlier run with\n"
+    "the same options is skipped, so a stopped batch started again carries on.\n\n"
+    "Examples:\n"
+    "  rad batch out scenes/*.des --formats ply,png --max-shots 500\n"
+    "  rad batch out list.txt --shard 0/4       the first of four processes sharing list.txt\n";
+
+const char* const kServeHelp =
+    "rad serve: a scene solved in the background and shown in a browser, where its objects'\n"
+    "colours and lights can be changed while it solves. Ctrl-C (or SIGTERM) stops it and\n"
+    "writes --output and --image from what the page showed last.\n\n"
+    "Example:\n"
+    "  rad serve scenes/cornell_box.des --port 8080 --output box.ply\n"
+    "  then open http://127.0.0.1:8080/\n";
+
+const char* const kConvertHelp =
+    "rad convert: a scene (description, OBJ, glTF or PLY) written in another of those\n"
+    "formats: geometry, materials and as much of the hierarchy as the target holds.\n"
+    "Nothing is solved.\n\n"
+    "Example:\n"
+    "  rad convert room.obj room.des --emit 'Lamp*=12'\n";
+
+// The same statuses for every mode (scripts tell a bad command line from a bad scene), each
+// described as the mode meets it.
+std::string exit_status_help(const std::string& mode) {
+  std::string h =
+      "\nExit status:\n"
+      "  0    done\n"
+      "  1    input error: a scene or file that cannot be read or written";
+  h += mode == "rad batch" ? ", or any scene that failed\n"
+       : mode == "rad"     ? ", or a scene with nothing to solve\n"
+                           : "\n";
+  h += "  2    usage error: an unknown option or a bad value on the command line\n";
+  if (mode == "rad serve") {
+    h += "  Ctrl-C (SIGINT) or SIGTERM ends it: the outputs are written, and the status is 0\n";
+  } else if (mode != "rad convert") {
+    h +=
+        "  130  stopped by Ctrl-C (SIGINT), 143 by SIGTERM: the outputs hold the solution so far\n";
+  }
+  return h;
+}
 
 const char* const kEmitHelp =
     "For a model scene (.obj, .ply, .gltf, .glb): materials matching the pattern emit VALUE "
     "times their colour, e.g. --emit 'Lamp*=12' (repeatable)";
 const char* const kHierarchyHelp =
-    "Object hierarchy (SPEC §3): file (as written), auto (Pures regrouped into compact "
-    "Composites and Assemblies of what is near) or flat (one Composite); default auto for "
-    "models, file for descriptions";
+    "How objects are grouped for shadow rays: file (as written), auto (Pures regrouped into "
+    "compact Composites and Assemblies of what is near) or flat (one Composite); default auto "
+    "for models, file for descriptions";
 
 // What every solving mode registers: the solve, how the solution is shown, how the scene is
 // read, --quiet, and (for a mode whose solve has an end) --max-memory.
@@ -253,7 +309,7 @@ struct SolvingMode {
     reading.add_to(app, kEmitHelp, kHierarchyHelp);
     memory_limit = memory;
     if (memory_limit) add_max_memory(app, max_memory);
-    app.add_flag("-q,--quiet", c.run.quiet, "Print errors only");
+    app.add_flag("-q,--quiet", c.run.quiet, "Print errors only (no stages, progress or warnings)");
   }
   void apply(CommandLine& c) const {
     solving.apply(c.run);
@@ -263,56 +319,72 @@ struct SolvingMode {
   }
 };
 
-// Parses `args` with `app` (whose options are bound to `c`), then runs `apply` on `c`; prints
-// and returns nothing on a usage error.
-template <class Apply>
-std::optional<CommandLine> parse_with(CLI::App& app, std::vector<std::string> args, CommandLine& c,
-                                      const Apply& apply, int* exit_code) {
-  std::reverse(args.begin(), args.end());
-  try {
-    app.parse(args);
-    apply(c);
-  } catch (const CLI::ParseError& e) {
-    *exit_code = app.exit(e);
-    return std::nullopt;
+// One mode's command line: the options (bound to `line` and to what `keep` holds), and what
+// is checked and filled in after parsing.
+struct ModeParser {
+  explicit ModeParser(const std::string& description, const std::string& name)
+      : app(description, name) {
+    app.footer(exit_status_help(name));
+    app.set_version_flag("--version", std::string("rad ") + rad_version(),
+                         "Print rad's version and exit");
   }
-  return c;
-}
+  // A value an option is bound to, alive as long as the parser.
+  template <class T>
+  T& keep() {
+    auto held = std::make_shared<T>();
+    kept.push_back(held);
+    return *held;
+  }
+  std::vector<std::string> option_names() const {
+    std::vector<std::string> names;
+    for (const CLI::Option* o : app.get_options()) {
+      for (const std::string& l : o->get_lnames()) names.push_back("--" + l);
+      for (const std::string& s : o->get_snames()) names.push_back("-" + s);
+    }
+    return names;
+  }
+
+  CLI::App app;
+  CommandLine line;
+  std::function<void(CommandLine&)> apply = [](CommandLine&) {};
+  std::vector<std::shared_ptr<void>> kept;
+};
 
 // rad convert IN OUT: only how the scene is read (a solve's options would be silently
 // meaningless here).
-std::optional<CommandLine> parse_convert(std::vector<std::string> args, int* exit_code) {
-  CommandLine c;
+void define_convert(ModeParser& p) {
+  CommandLine& c = p.line;
   c.mode = Mode::Convert;
   c.job.input.model.require_emission = false;
-  CLI::App app{
-      "rad convert: a scene (description, OBJ, glTF or PLY) written in another of those\n"
-      "formats: geometry, materials and as much of the hierarchy as the target holds.\n\n"
-      "  rad convert IN OUT [--emit 'PATTERN=VALUE']...\n",
-      "rad convert"};
-  app.add_option("in", c.job.input.path, "Scene to read: .des, .obj, .gltf, .glb or .ply")
+  CLI::App& app = p.app;
+  app.add_option("IN", c.job.input.path, "Scene to read: .des, .obj, .gltf, .glb or .ply")
       ->required();
-  app.add_option("out", c.converted, "Scene to write: .des, .obj (+ .mtl), .gltf, .glb or .ply")
+  app.add_option("OUT", c.converted, "Scene to write: .des, .obj (+ .mtl), .gltf, .glb or .ply")
       ->required();
-  SceneReading reading;
+  SceneReading& reading = p.keep<SceneReading>();
   reading.add_to(app,
                  "For a model: materials matching the pattern emit VALUE times their colour "
                  "(repeatable)",
                  "file (as read: a model's groups and materials), auto (the Pures regrouped "
                  "into compact Composites and Assemblies of what is near) or flat; default file");
   app.add_flag("-q,--quiet", c.run.quiet, "Print errors only");
-  return parse_with(
-      app, std::move(args), c, [&](CommandLine& r) { reading.apply(r.job.input); }, exit_code);
+  p.apply = [&reading](CommandLine& r) { reading.apply(r.job.input); };
 }
 
 // rad batch OUTDIR SCENE...: a solve's options for every scene; outputs named by --formats.
-std::optional<CommandLine> parse_batch(std::vector<std::string> args, int* exit_code) {
-  CommandLine c;
+void define_batch(ModeParser& p) {
+  CommandLine& c = p.line;
   c.mode = Mode::Batch;
-  CLI::App app{std::string(kOverview), "rad batch"};
-  std::string formats = "ply,png", shard;
-  app.add_option("outdir", c.batch.dir, "Folder for every scene's outputs and stats")->required();
-  app.add_option("scenes", c.batch.scenes, "Scene files, or .txt files listing them")->required();
+  CLI::App& app = p.app;
+  std::string& formats = p.keep<std::string>();
+  std::string& shard = p.keep<std::string>();
+  formats = "ply,png";
+  app.add_option("OUTDIR", c.batch.dir, "Folder for every scene's outputs and statistics")
+      ->required();
+  app.add_option("SCENE", c.batch.scenes,
+                 "Scene files, or .txt files listing them (one a line, '#' comments, paths "
+                 "relative to the list)")
+      ->required();
   app.add_option("--formats", formats,
                  "Outputs per scene, by extension: mesh (ply, off, obj, gltf, glb) and image "
                  "(png, hdr, exr, pfm)")
@@ -321,36 +393,33 @@ std::optional<CommandLine> parse_batch(std::vector<std::string> args, int* exit_
                  "Solve this process's share of the list: I/N takes scenes I, I + N, I + 2N, "
                  "... (0 <= I < N); 'slurm' takes I and N from the Slurm job array "
                  "(SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN, SLURM_ARRAY_TASK_COUNT)");
-  SolvingMode solving;
+  SolvingMode& solving = p.keep<SolvingMode>();
   solving.add_to(app, c, /*time_limit=*/true, /*images=*/false, /*memory=*/true);
-  return parse_with(
-      app, std::move(args), c,
-      [&](CommandLine& r) {
-        solving.apply(r);
-        if (!shard.empty()) {
-          try {
-            parse_shard(shard, &r.batch.shard_index, &r.batch.shard_count);
-          } catch (const Error& e) {
-            throw CLI::ValidationError("--shard", e.what());
-          }
-        }
-        r.batch.formats.clear();
-        for (size_t at = 0; at <= formats.size();) {
-          const size_t comma = std::min(formats.find(',', at), formats.size());
-          if (comma > at) r.batch.formats.push_back(formats.substr(at, comma - at));
-          at = comma + 1;
-        }
-      },
-      exit_code);
+  p.apply = [&solving, &formats, &shard](CommandLine& r) {
+    solving.apply(r);
+    if (!shard.empty()) {
+      try {
+        parse_shard(shard, &r.batch.shard_index, &r.batch.shard_count);
+      } catch (const Error& e) {
+        throw CLI::ValidationError("--shard", e.message());
+      }
+    }
+    r.batch.formats.clear();
+    for (size_t at = 0; at <= formats.size();) {
+      const size_t comma = std::min(formats.find(',', at), formats.size());
+      if (comma > at) r.batch.formats.push_back(formats.substr(at, comma - at));
+      at = comma + 1;
+    }
+  };
 }
 
 // rad serve SCENE: a solve without an end (no --time-limit), no checkpoints or statistics;
 // the outputs are written when it stops.
-std::optional<CommandLine> parse_serve(std::vector<std::string> args, int* exit_code) {
-  CommandLine c;
+void define_serve(ModeParser& p) {
+  CommandLine& c = p.line;
   c.mode = Mode::Serve;
-  CLI::App app{std::string(kOverview), "rad serve"};
-  app.add_option("scene", c.job.input.path, "Scene: a description (.des) or a model")->required();
+  CLI::App& app = p.app;
+  app.add_option("SCENE", c.job.input.path, "Scene: a description (.des) or a model")->required();
   app.add_option("--port", c.server.port, "TCP port (0: any free port)")
       ->check(CLI::Range(0, 65535))
       ->capture_default_str();
@@ -360,27 +429,26 @@ std::optional<CommandLine> parse_serve(std::vector<std::string> args, int* exit_
       ->capture_default_str();
   app.add_option("--output", c.job.outputs.mesh,
                  "Mesh written when the server stops (.ply, .off, .obj, .gltf, .glb)");
-  SolvingMode solving;
+  SolvingMode& solving = p.keep<SolvingMode>();
   solving.add_to(app, c, /*time_limit=*/false, /*images=*/true, /*memory=*/false);
-  return parse_with(
-      app, std::move(args), c, [&](CommandLine& r) { solving.apply(r); }, exit_code);
+  p.apply = [&solving](CommandLine& r) { solving.apply(r); };
 }
 
 // rad [options] SCENE OUTPUT, and its --check and --cross-check.
-std::optional<CommandLine> parse_solve(std::vector<std::string> args, int* exit_code) {
-  CommandLine c;
-  CLI::App app{std::string(kOverview), "rad"};
-  app.add_option("scene", c.job.input.path, "Scene: a description (.des) or a model (.obj, .ply)")
+void define_solve(ModeParser& p) {
+  CommandLine& c = p.line;
+  CLI::App& app = p.app;
+  app.add_option("SCENE", c.job.input.path, "Scene: a description (.des) or a model (.obj, .ply)")
       ->required();
-  app.add_option("output", c.job.outputs.mesh,
+  app.add_option("OUTPUT", c.job.outputs.mesh,
                  "Output mesh (.ply, .off, .gfo (COFF), .obj, .gltf or .glb)");
-  bool check = false;
+  bool& check = p.keep<bool>();
   app.add_flag("--check", check, "Parse and validate the scene, print a summary, do not solve");
-  std::string cross_check;
+  std::string& cross_check = p.keep<std::string>();
   app.add_option("--cross-check", cross_check,
                  "Solve with --backend and this backend too, compare their rays against brute "
                  "force and their vertices and radiosity; exit 1 if they disagree");
-  SolvingMode solving;
+  SolvingMode& solving = p.keep<SolvingMode>();
   solving.add_to(app, c, /*time_limit=*/true, /*images=*/true, /*memory=*/true);
   app.add_option("--stats-json", c.job.stats_json, "Write run statistics as JSON to this file");
   app.add_option("--checkpoint", c.job.checkpoint,
@@ -390,29 +458,151 @@ std::optional<CommandLine> parse_solve(std::vector<std::string> args, int* exit_
                  "Seconds between checkpoints (0: after every shot)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  return parse_with(
-      app, std::move(args), c,
-      [&](CommandLine& r) {
-        solving.apply(r);
-        if (check) r.mode = Mode::Check;
-        if (!cross_check.empty()) {
-          if (check) {
-            throw CLI::ValidationError("--cross-check", "solves; --check does not");
-          }
-          r.cross_check = parse_backend_kind(cross_check);
-          r.mode = Mode::CrossCheck;
-        }
-        if (!r.job.checkpoint.empty() && r.mode != Mode::Solve) {
-          throw CLI::ValidationError("--checkpoint", "applies to a solve that writes outputs");
-        }
-        if (r.mode == Mode::Solve && r.job.outputs.mesh.empty() && r.job.outputs.images.empty()) {
-          throw CLI::RequiredError("output (or --image, or --check)");
-        }
-      },
-      exit_code);
+  p.apply = [&solving, &check, &cross_check](CommandLine& r) {
+    solving.apply(r);
+    if (check) r.mode = Mode::Check;
+    if (!cross_check.empty()) {
+      if (check) throw CLI::ValidationError("--cross-check", "solves; --check does not");
+      try {
+        r.cross_check = parse_backend_kind(cross_check);
+      } catch (const Error& e) {
+        throw CLI::ValidationError("--cross-check", e.message());
+      }
+      r.mode = Mode::CrossCheck;
+    }
+    if (!r.job.checkpoint.empty() && r.mode != Mode::Solve) {
+      throw CLI::ValidationError("--checkpoint", "applies to a solve that writes outputs");
+    }
+    if (r.mode == Mode::Solve && r.job.outputs.mesh.empty() && r.job.outputs.images.empty()) {
+      throw CLI::RequiredError("OUTPUT (or --image, or --check)");
+    }
+  };
+}
+
+struct ModeDefinition {
+  const char* word;   // the first argument that chooses it ("" for none)
+  const char* title;  // how messages name it
+  const char* usage;
+  const char* help;
+  void (*define)(ModeParser&);
+};
+
+const ModeDefinition kModes[] = {
+    {"", "rad", "rad [options] SCENE OUTPUT", kOverview, define_solve},
+    {"batch", "rad batch", "rad batch OUTDIR SCENE... [options]", kBatchHelp, define_batch},
+    {"serve", "rad serve", "rad serve SCENE [options]", kServeHelp, define_serve},
+    {"convert", "rad convert", "rad convert IN OUT [options]", kConvertHelp, define_convert},
+};
+
+std::unique_ptr<ModeParser> make_parser(const ModeDefinition& mode) {
+  auto p = std::make_unique<ModeParser>(mode.help, mode.title);
+  mode.define(*p);
+  return p;
+}
+
+// The first argument CLI11 left over that looks like an option ("--max-shot", "--max-shot=5",
+// "-x"), without its value; empty if none does.
+std::string first_unknown_option(const std::vector<std::string>& left_over) {
+  for (const std::string& a : left_over) {
+    if (a.size() < 2 || a[0] != '-' || a == "--") continue;
+    if (std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.') continue;  // -1, -.5
+    return a.substr(0, a.find('='));
+  }
+  return {};
+}
+
+// What a usage error says: the offending argument first, then how to put it right.
+std::string usage_message(const ModeDefinition& mode, const ModeParser& p, const std::string& what,
+                          bool extras) {
+  const std::vector<std::string> left_over = p.app.remaining();
+  const std::string unknown = first_unknown_option(left_over);
+  std::string line;
+  if (!unknown.empty()) {
+    line = fmt::format("{}: unknown option '{}'", mode.title, unknown);
+    const ModeDefinition* owner = nullptr;
+    for (const ModeDefinition& other : kModes) {
+      const std::vector<std::string> names = make_parser(other)->option_names();
+      if (&other != &mode && std::find(names.begin(), names.end(), unknown) != names.end()) {
+        owner = &other;
+        break;
+      }
+    }
+    if (owner) {
+      line += fmt::format(" ({} takes it; {} does not)", owner->usage, mode.title);
+    } else if (const auto near = nearest_option(unknown, p.option_names())) {
+      line += fmt::format("; did you mean '{}'?", *near);
+    }
+  } else if (extras && !left_over.empty()) {
+    line = fmt::format("{}: unexpected argument '{}'", mode.title, left_over.front());
+  } else {
+    line = fmt::format("{}: {}", mode.title, what);
+  }
+  return fmt::format("{}\nUsage: {} ('{} --help' lists the options)\n", line, mode.usage,
+                     mode.title);
+}
+
+// Parses `args` (the arguments after the mode's word) with the mode's parser, then checks and
+// completes what they say; prints and returns nothing on --help, --version or a usage error.
+std::optional<CommandLine> parse_mode(const ModeDefinition& mode, std::vector<std::string> args,
+                                      int* exit_code) {
+  std::unique_ptr<ModeParser> p = make_parser(mode);
+  std::reverse(args.begin(), args.end());  // CLI11 takes them from the back
+  std::string what;
+  bool extras = false;
+  try {
+    p->app.parse(args);
+    p->apply(p->line);
+    return std::move(p->line);
+  } catch (const CLI::Success& e) {  // --help, --version
+    *exit_code = p->app.exit(e);
+    return std::nullopt;
+  } catch (const CLI::ExtrasError& e) {
+    what = e.what(), extras = true;
+  } catch (const CLI::ParseError& e) {
+    what = e.what();
+  } catch (const Error& e) {
+    what = e.loc().file.empty() ? e.message() : e.what();
+  }
+  std::fputs(usage_message(mode, *p, what, extras).c_str(), stderr);
+  *exit_code = kExitUsage;
+  return std::nullopt;
 }
 
 }  // namespace
+
+size_t edit_distance(std::string_view a, std::string_view b) {
+  // Optimal string alignment (Damerau-Levenshtein without repeated edits of one substring):
+  // typos drop, double, change or swap letters. Three rows suffice.
+  std::vector<size_t> before(b.size() + 1), last(b.size() + 1), row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) last[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t change = a[i - 1] == b[j - 1] ? 0 : 1;
+      row[j] = std::min({last[j] + 1, row[j - 1] + 1, last[j - 1] + change});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) {
+        row[j] = std::min(row[j], before[j - 2] + 1);
+      }
+    }
+    std::swap(before, last);
+    std::swap(last, row);
+  }
+  return last[b.size()];
+}
+
+std::optional<std::string> nearest_option(const std::string& typed,
+                                          const std::vector<std::string>& names) {
+  // Close enough to be the same word mistyped: about one edit in three letters, at most three.
+  const size_t letters = typed.size() - std::min(typed.find_first_not_of('-'), typed.size());
+  const size_t most = std::min<size_t>(3, letters / 3);
+  std::optional<std::string> best;
+  size_t best_distance = most + 1;
+  for (const std::string& name : names) {
+    const size_t d = edit_distance(typed, name);
+    if (d < best_distance) best = name, best_distance = d;
+  }
+  return best;
+}
 
 std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_code) {
   // The original's flags, spelled the modern way before CLI11 sees them.
@@ -423,12 +613,11 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_c
     if (a == "-minsize") a = "--min-size";
     args.push_back(a);
   }
-  const std::string first = args.empty() ? "" : args.front();
-  const std::vector<std::string> rest(args.begin() + (args.empty() ? 0 : 1), args.end());
-  if (first == "convert") return parse_convert(rest, exit_code);
-  if (first == "batch") return parse_batch(rest, exit_code);
-  if (first == "serve") return parse_serve(rest, exit_code);
-  return parse_solve(std::move(args), exit_code);
+  for (const ModeDefinition& mode : kModes) {
+    if (*mode.word == '\0' || args.empty() || args.front() != mode.word) continue;
+    return parse_mode(mode, std::vector<std::string>(args.begin() + 1, args.end()), exit_code);
+  }
+  return parse_mode(kModes[0], std::move(args), exit_code);
 }
 
 }  // namespace rad

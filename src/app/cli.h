@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "run/run_options.h"
@@ -46,9 +47,23 @@ struct CommandLine {
 /// and count. Throws rad::Error otherwise.
 void parse_shard(const std::string& text, int* index, int* count);
 
+/// rad's exit statuses, listed in every mode's --help. A run stopped by SIGINT or SIGTERM
+/// exits with 128 + the signal (interrupted_exit_status, core/interrupt.h).
+constexpr int kExitDone = 0;
+constexpr int kExitInputError = 1;  // a scene or file that cannot be read or written
+constexpr int kExitUsage = 2;       // the command line itself: an unknown option, a bad value
+
+/// Edits (a letter dropped, added, changed, or two neighbours swapped) that turn a into b.
+size_t edit_distance(std::string_view a, std::string_view b);
+
+/// The name in `names` nearest to `typed`, if it is close enough to be what was meant (about an
+/// edit in three letters, dashes not counted).
+std::optional<std::string> nearest_option(const std::string& typed,
+                                          const std::vector<std::string>& names);
+
 /// Parses argv. Accepts the original's single-dash flags (-noshadows, -minsize F). Returns
-/// nothing when the program should exit with `exit_code` (after --help or a usage error, which
-/// it prints).
+/// nothing when the program should exit with `exit_code`: kExitDone after --help or --version,
+/// kExitUsage after a usage error, which it prints naming the argument and how to mend it.
 std::optional<CommandLine> parse_command_line(int argc, char** argv, int* exit_code);
 
 }  // namespace rad

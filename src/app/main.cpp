@@ -40,14 +40,14 @@ int run(const rad::CommandLine& cmd, rad::Ranks* ranks) {
     case Mode::Check: {
       const SceneInput& in = cmd.job.input;
       std::fputs(summarize(load_hierarchy(in.path, in.model, in.hierarchy)).c_str(), stdout);
-      return 0;
+      return kExitDone;
     }
     case Mode::Solve:
       break;
   }
   run_scene_job(cmd.run, cmd.job, ranks);
   // Stopped by Ctrl-C or SIGTERM: the outputs hold the solution so far; say so in the status.
-  return interrupt_signal() ? interrupted_exit_status(interrupt_signal()) : 0;
+  return interrupt_signal() ? interrupted_exit_status(interrupt_signal()) : kExitDone;
 }
 
 // Prints an error once. Under MPI it names the rank and ends every rank: the others may be
@@ -61,7 +61,7 @@ void fail(const std::string& message, rad::Ranks* ranks) {
   if (ranks->rank() != 0) std::this_thread::sleep_for(std::chrono::seconds(1));
   std::fprintf(stderr, "rad rank %d of %d: %s\n", ranks->rank(), ranks->size(), message.c_str());
   std::fflush(stderr);
-  ranks->abort(1);
+  ranks->abort(rad::kExitInputError);
 }
 
 }  // namespace
@@ -70,14 +70,15 @@ int main(int argc, char** argv) {
   std::unique_ptr<rad::Ranks> ranks;
   try {
     ranks = rad::join_ranks(&argc, &argv);
-    int code = 0;
+    int code = rad::kExitDone;
     const auto cmd = rad::parse_command_line(argc, argv, &code);
     if (!cmd) return code;
+    rad::show_warnings(!cmd->run.quiet);
     return run(*cmd, ranks.get());
   } catch (const rad::Error& e) {
     fail(e.what(), ranks.get());
   } catch (const std::exception& e) {
     fail(std::string("error: ") + e.what(), ranks.get());
   }
-  return 1;
+  return rad::kExitInputError;
 }

@@ -5,6 +5,7 @@
 #include <csignal>
 #include <cstdio>
 
+#include "core/error.h"
 #include "hierarchy/auto_hierarchy.h"
 #include "run/prepared_solve.h"
 #include "run/write_outputs.h"
@@ -38,10 +39,9 @@ int run_serve(const CommandLine& cmd) {
   Server server(session, std::move(assets), cmd.server);
   server.bind();
   if (!is_loopback_host(cmd.server.host)) {
-    std::fprintf(stderr,
-                 "warning: serving on %s: anyone who can reach this address can see and edit "
-                 "the scene\n",
-                 cmd.server.host.c_str());
+    warn({}, fmt::format("serving on {}: anyone who can reach this address can see and edit "
+                         "the scene",
+                         cmd.server.host));
   }
   session.start();
   server.start();

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <atomic>
 #include <cstdio>
 
 namespace rad {
@@ -25,8 +26,15 @@ Error::Error(SourceLoc loc, const std::string& message)
 Error::Error(const std::string& message)
     : std::runtime_error("error: " + message), message_(message) {}
 
+namespace {
+std::atomic<bool> warnings_shown{true};
+}  // namespace
+
 void warn(const SourceLoc& loc, const std::string& message) {
+  if (!warnings_shown.load(std::memory_order_relaxed)) return;
   std::fprintf(stderr, "%s\n", compose(loc, "warning", message).c_str());
 }
+
+void show_warnings(bool on) { warnings_shown.store(on, std::memory_order_relaxed); }
 
 }  // namespace rad

@@ -31,7 +31,11 @@ class Error : public std::runtime_error {
   std::string message_;
 };
 
-/// A warning printed once on stderr in the same format ("...: warning: ...").
+/// A warning printed once on stderr in the same format ("...: warning: ..."), unless warnings
+/// are off. Every warning goes through here, so --quiet (errors only) silences them all.
 void warn(const SourceLoc& loc, const std::string& message);
+
+/// Turns warn() on or off for the whole process (main does it once, for --quiet). Thread-safe.
+void show_warnings(bool on);
 
 }  // namespace rad

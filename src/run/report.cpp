@@ -37,6 +37,8 @@ std::string format_statistics(const SolverState& s, double elapsed) {
   return o;
 }
 
+const char* rad_version() { return RAD_VERSION; }
+
 size_t peak_memory_bytes() {
   rusage u{};
   if (getrusage(RUSAGE_SELF, &u) != 0) return 0;
@@ -60,6 +62,7 @@ void write_stats_json(const std::string& path, const RunOptions& run, const Scen
   json j = {
       {"schema", "rad-stats"},
       {"version", 1},
+      {"rad_version", rad_version()},
       {"scene",
        {{"path", job.input.path},
         {"name", s.hierarchy->scene_name},

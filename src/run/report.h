@@ -14,6 +14,9 @@
 
 namespace rad {
 
+/// rad's version: CMake's project version.
+const char* rad_version();
+
 /// Timings of the phases of one run, in seconds.
 struct RunTimes {
   double parse = 0, build = 0, solve = 0, write = 0, total = 0;

@@ -121,11 +121,11 @@ TEST(CommandLine, RejectsAnUnknownBackendOrFormatBeforeWorking) {
   EXPECT_NE(r.err.find("unknown output format"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out));
   r = run_rad("--backend octree " + (kScenes / "parallel_squares.des").string() + " /tmp/x.ply");
-  EXPECT_EQ(r.code, 1);
-  EXPECT_EQ(r.err.rfind("error: unknown visibility backend \"octree\"", 0), 0u) << r.err;
+  EXPECT_EQ(r.code, rad::kExitUsage);
+  EXPECT_EQ(r.err.rfind("rad: --backend: unknown visibility backend \"octree\"", 0), 0u) << r.err;
   r = run_rad("--tonemap sepia " + (kScenes / "parallel_squares.des").string() + " /tmp/x.ply");
-  EXPECT_EQ(r.code, 1);
-  EXPECT_EQ(r.err.rfind("error: unknown tone curve 'sepia'", 0), 0u) << r.err;
+  EXPECT_EQ(r.code, rad::kExitUsage);
+  EXPECT_EQ(r.err.rfind("rad: --tonemap: unknown tone curve 'sepia'", 0), 0u) << r.err;
 }
 
 TEST(CommandLine, SampleCountsAreSquaresUpTo256AndTheMaximumFollowsTheMinimum) {
@@ -187,7 +187,8 @@ TEST(CommandLine, ShardIsIOfNOrTheSlurmArrayTask) {
   unsetenv("SLURM_ARRAY_TASK_COUNT");
   const RadRun r = run_rad("batch /tmp/rad_test_shard x.des --shard 2/2");
   EXPECT_NE(r.code, 0);
-  EXPECT_NE(r.err.find("--shard: error: expected I/N with 0 <= I < N"), std::string::npos) << r.err;
+  EXPECT_EQ(r.code, rad::kExitUsage);
+  EXPECT_NE(r.err.find("--shard: expected I/N with 0 <= I < N"), std::string::npos) << r.err;
 }
 
 TEST(CommandLine, BatchWritesTheGoodScenesAndReportsTheBrokenOne) {
@@ -375,7 +376,8 @@ TEST(CommandLine, CrossCheckReportsEveryLevelAndAgreesOnABundledScene) {
     EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
   }
   EXPECT_NE(r.out.find("\nagree\n"), std::string::npos) << r.out;
-  EXPECT_EQ(run_rad("--cross-check nosuch " + (kScenes / "parallel_squares.des").string()).code, 1);
+  EXPECT_EQ(run_rad("--cross-check nosuch " + (kScenes / "parallel_squares.des").string()).code,
+            rad::kExitUsage);
 }
 
 // A solve that could outgrow --max-memory is refused before any work, with the estimate and the
@@ -393,8 +395,7 @@ TEST(CommandLine, SolveThatCouldOutgrowTheMemoryLimitIsRefusedWithTheEstimate) {
   EXPECT_EQ(
       run_rad("--max-memory 12Q " + (kScenes / "cornell_box.des").string() + " " + out.string())
           .code,
-      105)
-      << "a usage error (CLI11's validation status)";
+      rad::kExitUsage);
 }
 
 // A model file is a scene: without an emitting material rad says which option makes one emit;
@@ -503,6 +504,142 @@ TEST(CommandLine, ConvertRefusesAnUnknownFormatAndTheSolversOptions) {
   r = run_rad("convert --max-shots 3 " + scene + " /tmp/x.des");
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.err.find("max-shots"), std::string::npos) << r.err;
+}
+
+TEST(CommandLine, VersionIsTheProjectsAndGoesIntoTheStats) {
+  for (const char* mode : {"", "batch ", "serve ", "convert "}) {
+    const RadRun r = run_rad(std::string(mode) + "--version");
+    EXPECT_EQ(r.code, rad::kExitDone) << mode << r.err;
+    EXPECT_EQ(r.out, "rad " RAD_VERSION "\n") << mode;
+  }
+  const fs::path stats = fs::temp_directory_path() / "rad_test_version.json";
+  const RadRun r = run_rad("-q --max-shots 1 --stats-json " + stats.string() + " " +
+                           (kScenes / "parallel_squares.des").string() + " --image " +
+                           (fs::temp_directory_path() / "rad_test_version.png").string());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(read_file(stats).find("\"rad_version\": \"" RAD_VERSION "\""), std::string::npos);
+  fs::remove(stats);
+  fs::remove(fs::temp_directory_path() / "rad_test_version.png");
+}
+
+TEST(CommandLine, EditDistanceCountsDroppedAddedChangedAndSwappedLetters) {
+  EXPECT_EQ(rad::edit_distance("--max-shot", "--max-shots"), 1u);
+  EXPECT_EQ(rad::edit_distance("--smaples", "--samples"), 1u);
+  EXPECT_EQ(rad::edit_distance("--treshold", "--threshold"), 1u);
+  EXPECT_EQ(rad::edit_distance("--port", "--size"), 4u);
+  EXPECT_EQ(rad::edit_distance("", "abc"), 3u);
+  EXPECT_EQ(rad::edit_distance("abc", "abc"), 0u);
+  const std::vector<std::string> names{"--threads", "--threshold", "--samples", "-q", "--emit"};
+  EXPECT_EQ(rad::nearest_option("--thread", names), "--threads");
+  EXPECT_EQ(rad::nearest_option("--thresold", names), "--threshold");
+  EXPECT_EQ(rad::nearest_option("--emitt", names), "--emit");
+  EXPECT_EQ(rad::nearest_option("-x", names), std::nullopt) << "one letter: anything is near";
+  EXPECT_EQ(rad::nearest_option("--colour", names), std::nullopt);
+}
+
+// An unknown option is named first, with the nearest of the mode's own options, or the mode
+// that takes it; the status is the usage error's, before any work.
+TEST(CommandLine, UnknownOptionIsNamedFirstWithWhatWasMeant) {
+  const std::string scene = (kScenes / "parallel_squares.des").string();
+  const fs::path out = fs::temp_directory_path() / "rad_test_unknown.ply";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--max-shot 5 " + scene + " " + out.string(),
+       "rad: unknown option '--max-shot'; did you mean '--max-shots'?\n"},
+      {scene + " " + out.string() + " --smaples=4",
+       "rad: unknown option '--smaples'; did you mean '--samples'?\n"},
+      {"batch /tmp/rad_test_unknown_dir " + scene + " --fromats ply",
+       "rad batch: unknown option '--fromats'; did you mean '--formats'?\n"},
+      {"serve " + scene + " --prot 8080",
+       "rad serve: unknown option '--prot'; did you mean '--port'?\n"},
+      {"convert " + scene + " /tmp/x.des --emitt 'a=1'",
+       "rad convert: unknown option '--emitt'; did you mean '--emit'?\n"},
+      {"--colourful " + scene + " " + out.string(), "rad: unknown option '--colourful'\n"},
+      {"serve " + scene + " --stats-json s.json",
+       "rad serve: unknown option '--stats-json' (rad [options] SCENE OUTPUT takes it; rad serve "
+       "does not)\n"},
+      {scene + " " + out.string() + " extra.ply", "rad: unexpected argument 'extra.ply'\n"},
+  };
+  for (const auto& [args, first_line] : cases) {
+    const RadRun r = run_rad(args);
+    EXPECT_EQ(r.code, rad::kExitUsage) << args;
+    EXPECT_EQ(r.err.substr(0, r.err.find('\n') + 1), first_line) << args;
+    EXPECT_NE(r.err.find("--help' lists the options"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "") << args;
+  }
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_FALSE(fs::exists("/tmp/rad_test_unknown_dir"));
+}
+
+// 0 done, 1 input error, 2 usage error (130 and 143 for signals:
+// SigintAndSigtermWriteThePartialSolutionAndTheCheckpoint); every mode's help lists them.
+TEST(CommandLine, ExitStatusTellsAUsageErrorFromAnInputError) {
+  EXPECT_EQ(run_rad("").code, rad::kExitUsage);
+  EXPECT_EQ(run_rad("batch").code, rad::kExitUsage);
+  EXPECT_EQ(run_rad("--threads many a.des b.ply").code, rad::kExitUsage);
+  const RadRun missing = run_rad("/tmp/rad_test_no_such_scene.des /tmp/x.ply");
+  EXPECT_EQ(missing.code, rad::kExitInputError);
+  EXPECT_EQ(missing.err.rfind("/tmp/rad_test_no_such_scene.des", 0), 0u) << missing.err;
+  EXPECT_EQ(run_rad("--check " + (kScenes / "parallel_squares.des").string()).code, rad::kExitDone);
+  for (const char* mode : {"", "batch ", "serve ", "convert "}) {
+    const RadRun r = run_rad(std::string(mode) + "--help");
+    EXPECT_EQ(r.code, rad::kExitDone);
+    for (const char* line :
+         {"Exit status:", "  0    done", "  1    input error", "  2    usage error"}) {
+      EXPECT_NE(r.out.find(line), std::string::npos) << mode << line;
+    }
+  }
+  EXPECT_NE(run_rad("--help").out.find("  130  stopped by Ctrl-C (SIGINT), 143 by SIGTERM"),
+            std::string::npos);
+  EXPECT_NE(run_rad("batch --help").out.find("any scene that failed"), std::string::npos);
+}
+
+// rad batch --help, rad serve --help and rad convert --help describe that mode alone, with an
+// example, in the user's words.
+TEST(CommandLine, EachModesHelpShowsThatModeOnlyWithAnExample) {
+  const std::vector<std::pair<std::string, std::vector<std::string>>> modes = {
+      {"", {"rad batch OUTDIR", "rad serve SCENE", "rad convert IN OUT"}},
+      {"batch ", {"rad serve", "rad convert", "--cross-check", "--stats-json"}},
+      {"serve ", {"rad batch", "rad convert", "--formats", "--time-limit"}},
+      {"convert ", {"rad batch", "rad serve", "--max-shots", "--backend"}},
+  };
+  for (const auto& [mode, not_here] : modes) {
+    const RadRun r = run_rad(mode + "--help");
+    EXPECT_EQ(r.code, 0) << mode;
+    EXPECT_NE(r.out.find("Example"), std::string::npos) << mode;
+    EXPECT_NE(r.out.find("rad " + mode), std::string::npos) << mode;
+    for (const char* jargon : {"SPEC", "§", "EQ "}) {
+      EXPECT_EQ(r.out.find(jargon), std::string::npos) << mode << jargon;
+    }
+    if (mode.empty()) {
+      for (const std::string& other : not_here) EXPECT_NE(r.out.find(other), std::string::npos);
+    } else {
+      for (const std::string& other : not_here) {
+        EXPECT_EQ(r.out.find(other), std::string::npos) << mode << other;
+      }
+    }
+  }
+}
+
+// -q: errors only. A scene that warns (a degenerate triangle) says nothing at all under -q.
+TEST(CommandLine, QuietPrintsErrorsOnlyNotWarnings) {
+  const fs::path dir = fs::temp_directory_path() / ("rad_test_quiet_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "warns.des")
+      << "\"warns\"\nObject \"p\" Pure { Reflectivity 0.5 Color <1 1 1> Emission 1 Data {\n"
+         "<0 0 0> <1 0 0> <0 1 0>  <0 0 0> <1 0 0> <2 0 0> } }\n";
+  const std::string args =
+      "--max-shots 1 " + (dir / "warns.des").string() + " " + (dir / "out.ply").string();
+  RadRun r = run_rad(args);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: dropped 1 degenerate"), std::string::npos) << r.err;
+  r = run_rad("-q " + args);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  EXPECT_EQ(r.out, "");
+  r = run_rad("-q --check " + (dir / "warns.des").string() + " --backend nosuch");
+  EXPECT_EQ(r.code, rad::kExitUsage);
+  EXPECT_NE(r.err, "") << "errors still print";
+  fs::remove_all(dir);
 }
 
 }  // namespace
