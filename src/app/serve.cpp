@@ -23,7 +23,7 @@ int run_serve(const CommandLine& cmd) {
     std::fputs((s + "\n").c_str(), stdout);
     std::fflush(stdout);
   };
-  check_output_names(outputs);
+  check_outputs(outputs);
   WebAssets assets = load_web_assets(default_web_modules_dir());
 
   const SceneInput& in = cmd.job.input;
@@ -59,7 +59,9 @@ int run_serve(const CommandLine& cmd) {
   const auto snap = session.snapshot();
   say(fmt::format("{} shots, unshot fraction {:.3e}, {} elements", snap->shots,
                   snap->unshot_fraction, snap->elements));
-  write_outputs(snap->mesh, outputs, snap->tone, say);  // the exposure the page showed
+  StagedFiles files;
+  write_outputs(snap->mesh, outputs, snap->tone, say, files);  // the exposure the page showed
+  files.commit();
   return 0;
 }
 

@@ -21,6 +21,7 @@
 #include "hierarchy/auto_hierarchy.h"
 #include "hierarchy/hierarchy.h"
 #include "mesh/patch_mesh.h"
+#include "run/output_files.h"
 #include "run/prepared_solve.h"
 #include "run/report.h"
 #include "run/write_outputs.h"
@@ -53,6 +54,15 @@ uint64_t job_fingerprint(const RunOptions& run, const SceneJob& job, const Hiera
   return f.value();
 }
 
+namespace {
+// Every file the job writes, refused before any work if it cannot be written.
+void check_job_outputs(const SceneJob& job) {
+  check_outputs(job.outputs);
+  if (!job.stats_json.empty()) check_writable(job.stats_json);
+  if (!job.checkpoint.empty()) check_writable(job.checkpoint);
+}
+}  // namespace
+
 SceneJobResult run_scene_job(const RunOptions& run, const SceneJob& job, Ranks* ranks) {
   const auto start = Clock::now();
   // Under MPI rank 0 speaks and writes; the others solve their share quietly.
@@ -66,7 +76,8 @@ SceneJobResult run_scene_job(const RunOptions& run, const SceneJob& job, Ranks* 
     std::fflush(stdout);
   };
   RunTimes times;
-  check_output_names(job.outputs);
+  // Rank 0 alone writes, on its own machine.
+  if (lead) check_job_outputs(job);
   if (is_original_output_name(job.outputs.mesh)) {
     say(job.outputs.mesh + ": .gfo is the original's output name; writing Geomview COFF there");
   }
@@ -201,15 +212,20 @@ SceneJobResult run_scene_job(const RunOptions& run, const SceneJob& job, Ranks* 
 
   t = Clock::now();
   const OutputMesh mesh = make_output_mesh(state, job.outputs.ambient);
+  StagedFiles files;
   write_outputs(mesh, job.outputs,
-                scene_tone_map(state, mesh.display, job.outputs.tonemap, job.outputs.exposure),
-                say);
+                scene_tone_map(state, mesh.display, job.outputs.tonemap, job.outputs.exposure), say,
+                files);
   times.write = since(t);
   times.total = since(start);
+  // Last: rad batch takes a stats file with this job's fingerprint to mean every output is there.
   if (!job.stats_json.empty()) {
-    write_stats_json(job.stats_json, run, job, state, stop, times,
-                     measure_seams(mesh, hierarchy.triangles), job_id, reports);
+    files.write(job.stats_json, [&](const std::string& path) {
+      write_stats_json(path, run, job, state, stop, times, measure_seams(mesh, hierarchy.triangles),
+                       job_id, reports);
+    });
   }
+  files.commit();
   if (!quiet) std::fputs(format_statistics(state, times.total).c_str(), stdout);
   return {stop, state.shots, count_vertices(state.mesh), state.unshot_fraction(), times.total};
 }

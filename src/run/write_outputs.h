@@ -6,17 +6,19 @@
 
 #include "export/output_mesh.h"
 #include "export/tonemap.h"
+#include "run/output_files.h"
 #include "run/run_options.h"
 
 namespace rad {
 
-/// Refuses a mesh or image name whose extension no writer takes (before any work is done).
-/// Throws rad::Error.
-void check_output_names(const OutputOptions& o);
+/// Refuses, before any work is done, a mesh or image name whose extension no writer takes, or
+/// one that cannot be written (check_writable). Throws rad::Error.
+void check_outputs(const OutputOptions& o);
 
-/// Writes o.mesh and every o.images from `mesh`, shown with `tone`; images through o.camera
-/// (or default_camera) at o.image_width x o.image_height. `say` is told each file's name first.
+/// Writes o.mesh and every o.images from `mesh`, shown with `tone`, into `files` (which the
+/// caller commits, with any other output of the run); images through o.camera (or
+/// default_camera) at o.image_width x o.image_height. `say` is told each file's name first.
 void write_outputs(const OutputMesh& mesh, const OutputOptions& o, const ToneMap& tone,
-                   const std::function<void(const std::string&)>& say);
+                   const std::function<void(const std::string&)>& say, StagedFiles& files);
 
 }  // namespace rad

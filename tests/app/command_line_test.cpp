@@ -642,4 +642,42 @@ TEST(CommandLine, QuietPrintsErrorsOnlyNotWarnings) {
   fs::remove_all(dir);
 }
 
+// Every output (mesh, images, statistics, checkpoint) is checked before the scene is even read,
+// so a typo in a folder costs no solve; and the outputs appear together or not at all.
+TEST(CommandLine, EveryOutputIsCheckedBeforeTheSolveAndWrittenAllOrNone) {
+  const fs::path dir = fs::temp_directory_path() / ("rad_test_outputs_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string scene = (kScenes / "cornell_box.des").string();
+  const std::string ply = (dir / "t.ply").string(), missing = (dir / "nodir").string();
+  for (const std::string& bad :
+       {missing + "/t.ply", ply + " --image " + missing + "/t.png",
+        ply + " --stats-json " + missing + "/s.json", ply + " --checkpoint " + missing + "/c.ckpt",
+        ply + " --image " + dir.string() + ".png --image " + missing + "/t.hdr"}) {
+    const RadRun r = run_rad(scene + " " + bad);
+    EXPECT_EQ(r.code, rad::kExitInputError) << bad;
+    EXPECT_EQ(r.err.rfind(missing + "/", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find("does not exist; create it or give another path"), std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.out.find("Reading description file"), std::string::npos) << "no work: " << bad;
+    EXPECT_FALSE(fs::exists(ply)) << "none of the outputs: " << bad;
+    EXPECT_FALSE(fs::exists(dir.string() + ".png")) << bad;
+  }
+  const RadRun r = run_rad(scene + " " + dir.string() + " --image " + (dir / "t.png").string());
+  EXPECT_EQ(r.code, rad::kExitInputError);
+  EXPECT_NE(r.err.find("is a folder"), std::string::npos) << r.err;
+  // All of them when they can be written, and no temporaries.
+  const RadRun ok =
+      run_rad("-q --max-shots 2 --size 16x16 " + scene + " " + ply + " --image " +
+              (dir / "t.png").string() + " --stats-json " + (dir / "s.json").string());
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  size_t files = 0;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
+    ++files;
+  }
+  EXPECT_EQ(files, 3u);
+  fs::remove_all(dir);
+}
+
 }  // namespace
