@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include "export/image_file.h"
 #include "export/mesh_file.h"
 #include "run/scene_job.h"
+#include "scene/model.h"
 
 namespace rad {
 
@@ -72,8 +74,16 @@ int run_batch(const CommandLine& cmd) {
     }
   }
   if (mesh_exts.size() > 1) throw Error("batch writes one mesh format per scene");
-  fs::create_directories(cmd.batch.dir);
   const std::vector<std::string> scenes = expand_scene_list(cmd.batch.scenes);
+  // --emit is for the models of the list; a list of descriptions alone has no use for it.
+  const bool any_model = std::any_of(scenes.begin(), scenes.end(),
+                                     [](const std::string& s) { return is_model_file(s); });
+  if (!cmd.job.input.model.emit.empty() && !any_model) {
+    throw Error(
+        "--emit names the materials of a model (.obj, .ply, .gltf, .glb), and every scene of "
+        "this batch is a description: give the lamps' objects an Emission line instead");
+  }
+  fs::create_directories(cmd.batch.dir);
 
   // Names over the whole list, so every shard gives a scene the same one.
   std::vector<std::string> names;
@@ -93,6 +103,7 @@ int run_batch(const CommandLine& cmd) {
     const fs::path base = fs::path(cmd.batch.dir) / name;
     SceneJob job = cmd.job;
     job.input.path = scene;
+    if (!is_model_file(scene)) job.input.model.emit.clear();
     job.stats_json = base.string() + ".json";
     job.skip_if_done = true;
     if (!mesh_exts.empty()) job.outputs.mesh = base.string() + "." + mesh_exts[0];

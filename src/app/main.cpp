@@ -15,6 +15,7 @@
 #include "core/interrupt.h"
 #include "hierarchy/auto_hierarchy.h"
 #include "hierarchy/hierarchy.h"
+#include "run/scene_checks.h"
 #include "run/scene_job.h"
 #include "scene/scene_file.h"
 #include "solver/ranks.h"
@@ -39,6 +40,7 @@ int run(const rad::CommandLine& cmd, rad::Ranks* ranks) {
       return run_cross_check(cmd);
     case Mode::Check: {
       const SceneInput& in = cmd.job.input;
+      check_scene_input(in);
       std::fputs(summarize(load_hierarchy(in.path, in.model, in.hierarchy)).c_str(), stdout);
       return kExitDone;
     }

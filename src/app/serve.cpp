@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "hierarchy/auto_hierarchy.h"
 #include "run/prepared_solve.h"
+#include "run/scene_checks.h"
 #include "run/write_outputs.h"
 #include "serve/session.h"
 #include "serve/shutdown.h"
@@ -27,6 +28,7 @@ int run_serve(const CommandLine& cmd) {
   WebAssets assets = load_web_assets(default_web_modules_dir());
 
   const SceneInput& in = cmd.job.input;
+  check_scene_input(in);  // no light is no error here: the page can give an object some
   const Hierarchy hierarchy = load_hierarchy(in.path, in.model, in.hierarchy);
   const PreparedSolve prepared(hierarchy, run);
   SessionOptions so;

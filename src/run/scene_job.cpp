@@ -24,6 +24,7 @@
 #include "run/output_files.h"
 #include "run/prepared_solve.h"
 #include "run/report.h"
+#include "run/scene_checks.h"
 #include "run/write_outputs.h"
 #include "scene/scene_file.h"
 #include "solver/checkpoint.h"
@@ -78,12 +79,14 @@ SceneJobResult run_scene_job(const RunOptions& run, const SceneJob& job, Ranks* 
   RunTimes times;
   // Rank 0 alone writes, on its own machine.
   if (lead) check_job_outputs(job);
+  check_scene_input(job.input);
   if (is_original_output_name(job.outputs.mesh)) {
     say(job.outputs.mesh + ": .gfo is the original's output name; writing Geomview COFF there");
   }
 
   say("Reading description file...");
   const Hierarchy hierarchy = load_hierarchy(job.input.path, job.input.model, job.input.hierarchy);
+  require_light(hierarchy, job.input, run.solver);
   times.parse = since(start);
   const uint64_t job_id = job.stats_json.empty() ? 0 : job_fingerprint(run, job, hierarchy);
   if (job.skip_if_done && job_id != 0 && read_job_fingerprint(job.stats_json) == job_id) {

@@ -680,4 +680,42 @@ TEST(CommandLine, EveryOutputIsCheckedBeforeTheSolveAndWrittenAllOrNone) {
   fs::remove_all(dir);
 }
 
+// A scene with no light has nothing to solve: an error saying how to light it, unless
+// --max-shots 0 asks for the unlit scene (emission only).
+TEST(CommandLine, ASceneWithoutLightIsRefusedUnlessOnlyTheEmissionIsAsked) {
+  const fs::path dir = fs::temp_directory_path() / ("rad_test_dark_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const std::string des = (dir / "dark.des").string(), ply = (dir / "dark.ply").string();
+  std::ofstream(des) << "\"dark\"\nObject \"p\" Pure { Reflectivity 0.5 Color <1 1 1> Emission 0 "
+                        "Data { <0 0 0> <1 0 0> <0 1 0> } }\n";
+  RadRun r = run_rad(des + " " + ply);
+  EXPECT_EQ(r.code, rad::kExitInputError);
+  EXPECT_EQ(r.err.rfind(des + ": error: nothing in this scene emits light", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("Emission"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--max-shots 0"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(ply));
+  r = run_rad("-q --max-shots 0 " + des + " " + ply);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(read_file(ply).rfind("ply\n", 0), 0u);
+  EXPECT_EQ(run_rad("--check " + des).code, 0) << "--check only reads it";
+  fs::remove_all(dir);
+}
+
+// --emit names a model's materials; given to a description it is refused, not ignored.
+TEST(CommandLine, EmitGivenToADescriptionIsRefused) {
+  const std::string scene = (kScenes / "parallel_squares.des").string();
+  const fs::path dir = fs::temp_directory_path() / ("rad_test_emit_" + std::to_string(getpid()));
+  for (const std::string& args : {"--emit 'Lamp=5' " + scene + " " +
+                                      (fs::temp_directory_path() / "rad_test_emit.ply").string(),
+                                  "--check --emit 'Lamp=5' " + scene,
+                                  "batch " + dir.string() + " " + scene + " --emit 'Lamp=5'"}) {
+    const RadRun r = run_rad(args);
+    EXPECT_EQ(r.code, rad::kExitInputError) << args;
+    EXPECT_NE(r.err.find("--emit names the materials of a model"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("Emission"), std::string::npos) << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir));
+  EXPECT_FALSE(fs::exists(fs::temp_directory_path() / "rad_test_emit.ply"));
+}
+
 }  // namespace
