@@ -22,7 +22,7 @@ namespace {
 constexpr char kMagic[8] = {'R', 'A', 'D', 'C', 'K', 'P', 'T', '\n'};
 // 2: vertices shared by copy; 3: kept shadow-ray answers counted; 4: vertex states apart from
 // the positions
-constexpr uint32_t kFormat = 6;
+constexpr uint32_t kFormat = 7;
 constexpr size_t kHeader = sizeof kMagic + sizeof(uint32_t) + 3 * sizeof(uint64_t);
 
 struct HistoryRecord {
@@ -77,6 +77,7 @@ void write_checkpoint(const std::string& path, const SolverState& s, uint64_t fi
   w.pod(uint64_t(s.shot_log.size()));
   for (const ShotSource& src : s.shot_log) write_shot(w, src);
   w.vec(s.cluster_cost);
+  w.vec(s.cluster_balance);
 
   const uint64_t checksum = Fingerprint().bytes(w.out.data(), w.out.size()).value();
   AtomicFile f(path);
@@ -163,6 +164,9 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   std::vector<double> cluster_cost;
   r.vec(cluster_cost);
   if (cluster_cost.size() > s.clusters.size()) r.fail("more shot costs than clusters");
+  std::vector<ShotBalance> balance;
+  r.vec(balance);
+  if (balance.size() > s.clusters.size()) r.fail("more shot balances than clusters");
   if (!r.done()) r.fail("trailing bytes");
   if (shots < 0 || uint64_t(shots) < logged) r.fail("more shots logged than made");
 
@@ -179,6 +183,9 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   s.history = std::move(history);
   s.shot_log = std::move(log);
   s.cluster_cost = std::move(cluster_cost);
+  s.cluster_retention.clear();
+  for (const ShotBalance& b : balance) s.cluster_retention.push_back(b.retention());
+  s.cluster_balance = std::move(balance);
   update_unshot_totals(s);
 }
 

@@ -81,14 +81,15 @@ std::optional<Shooter> choose_shooter(const SolverState& s) {
   // it would shoot now, not what it holds, says which goes first. (By what it holds, one that
   // holds the overshoot it shot last, -rho x ambient, shoots next and nothing again, and the
   // held overshoot of all of them grows: a furnished room ended with 42% of its energy unshot
-  // after 900 shots.)
+  // after 900 shots.) Its share is what it expects back: the ambient times its retention.
   const bool overshoot = s.options.overshoot;
   const double amb = overshoot ? ambient_estimate(s) : 0.0;
   const ExpectedCost expected_cost(s);
   const Clusters& k = s.clusters;
   // Mostly a pass over the clusters, not the polygons (ClusterUnshot).
   auto shooting = [&](size_t c) {
-    return overshoot ? cluster_shooting_energy(s, c, amb) : s.cluster_unshot[c].magnitude;
+    return overshoot ? cluster_shooting_energy(s, c, amb * retention(s, c))
+                     : s.cluster_unshot[c].magnitude;
   };
   using Best = std::pair<double, int32_t>;  // (score, -index): the larger wins, ties lowest
   const Best found = tbb::parallel_reduce(
@@ -102,7 +103,8 @@ std::optional<Shooter> choose_shooter(const SolverState& s) {
           // that cannot win even so is passed over without its polygons (the same choice).
           if (overshoot) {
             const ClusterUnshot& u = s.cluster_unshot[c];
-            const double most = (u.magnitude + u.rho_area * std::abs(amb)) * (1.0 + 1e-9);
+            const double most =
+                (u.magnitude + u.rho_area * std::abs(amb) * retention(s, c)) * (1.0 + 1e-9);
             if (Best{most / cost, -int32_t(c)} < b) continue;
           }
           const double e = shooting(c);
@@ -122,15 +124,23 @@ std::optional<Shooter> choose_shooter(const SolverState& s) {
 
 namespace {
 
-// Clears cluster c's unshot radiosity into the source of the next shot.
-ShotSource freeze_source(SolverState& s, size_t c, double energy) {
+// Clears cluster c's unshot radiosity into the source of the next shot; `shot` is set to the
+// energy it shoots (mean over the channels, signed).
+ShotSource freeze_source(SolverState& s, size_t c, double energy, double& shot) {
   const Clusters& k = s.clusters;
   // Overshooting (Feda, Purgathofer 1992): also shoot what the source will get back from the
   // ambient; its unshot radiosity becomes that much negative, shot later if still significant.
-  // A cluster lies in one Pure: one reflectance.
+  // It gets back only as much as its shots land (retention): else a lamp alone in the void,
+  // sure of getting back rho x ambient, is handed its own overshoot as the next ambient and
+  // shoots +-1 of the emitted energy for ever. A cluster lies in one Pure: one reflectance.
   Vec3 over(0.0f);
   const bool overshoot = s.options.overshoot;
-  if (overshoot) over = s.material_of(k.polygons[k.first[c]]).reflectance * ambient_estimate(s);
+  if (overshoot) {
+    over = s.material_of(k.polygons[k.first[c]]).reflectance *
+           float(double(ambient_estimate(s)) * retention(s, c));
+  }
+  shot = 0.0;
+  for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) shot += s.unshot_energy[k.polygons[j]].sum;
   auto set_unshot = [&](const Vec3& add, bool assign) {
     for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) {
       for (VertexState& v : s.vertex_states[k.polygons[j]]) {
@@ -146,6 +156,7 @@ ShotSource freeze_source(SolverState& s, size_t c, double energy) {
     left.push_back(overshoot ? polygon_unshot_energy(s, k.polygons[j]) : UnshotEnergy{});
   }
   set_unshot_energies(s, {k.polygons.data() + k.first[c], left.size()}, left);
+  for (const UnshotEnergy& e : left) shot -= e.sum;
 
   src.major = s.options.major_shot_fraction > 0.0 &&
               energy >= s.options.major_shot_fraction * s.reference_energy;
@@ -153,6 +164,30 @@ ShotSource freeze_source(SolverState& s, size_t c, double energy) {
   // holds the sharp shadows.
   if (!src.major) aim_roulette(src, s.options.roulette * s.radiosity_scale, s.shots + 1);
   return src;
+}
+
+// Adds the shot cluster c just made to its balance and sets its retention: what its receivers
+// gained (absorbed plus unshot, `absorbed` and `unshot` against the unshot energies they held)
+// against what it shot, `shot` signed and `magnitude` as chosen (each the owner's figure, 0 on
+// other ranks). Summed exactly and added in shot order: every rank sets the same bits.
+void measure_retention(SolverState& s, size_t c, double shot, double magnitude,
+                       std::span<const double> absorbed, std::span<const UnshotEnergy> unshot) {
+  const std::vector<uint32_t>& receivers = s.receivers;
+  std::vector<double> landed(receivers.size());
+  for (size_t i = 0; i < receivers.size(); ++i)
+    landed[i] = absorbed[i] + (unshot[i].sum - s.unshot_energy[receivers[i]].sum);
+  const double mine[2] = {shot, magnitude};
+  const std::span<const double> terms[3] = {landed, {mine, 1}, {mine + 1, 1}};
+  double sums[3];
+  exact_energy_sums(s, terms, sums);
+  // Channels of opposite signs (after an edit) leave a signed energy that says little of what
+  // was shot: the last retention stands.
+  if (!(std::abs(sums[1]) >= 0.5 * sums[2] && sums[2] > 0.0)) return;
+  if (s.cluster_balance.size() < s.clusters.size()) s.cluster_balance.resize(s.clusters.size());
+  ShotBalance& b = s.cluster_balance[c];
+  b.shot += std::abs(sums[1]);
+  b.landed += sums[1] > 0.0 ? sums[0] : -sums[0];
+  set_retention(s, c, b.retention());
 }
 
 }  // namespace
@@ -166,7 +201,8 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   // The cluster's owner freezes it as the source (the one rank that holds its radiosity) and
   // shares it with the other ranks.
   ShotSource src;
-  if (s.owns_cluster(c)) src = freeze_source(s, c, shooter->energy);
+  double shot = 0.0;  // its energy, signed (the owner's figure; 0 on the other ranks)
+  if (s.owns_cluster(c)) src = freeze_source(s, c, shooter->energy, shot);
   if (s.ranks) share_shot_source(s, src, s.cluster_owner[c]);
   const bool major = src.major;
   shoot_to_receivers(s, src, vis, major);
@@ -205,6 +241,7 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   refine_after_shot(s, src, vis, major, to_refine);
   if (src.major || s.options.log_minor_shots) s.shot_log.push_back(std::move(src));
   tbb::parallel_for(size_t(0), refined.size(), [&](size_t j) { count(refined[j]); });
+  measure_retention(s, c, shot, s.owns_cluster(c) ? shooter->energy : 0.0, absorbed, unshot);
   for (double a : absorbed) s.absorbed_energy += a;
   // The totals and the clusters' energies follow the polygons the shot changed, not the scene.
   set_unshot_energies(s, receivers, unshot);

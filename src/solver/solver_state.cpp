@@ -108,6 +108,42 @@ DVec3 interreflection(const DVec3& mean_rho) {
   return 1.0 / (1.0 - glm::min(mean_rho, DVec3(0.999)));
 }
 
+// The mean reflectance less what the clusters' light leaves the scene by (SolverState::
+// lost_reflectance): with every retention 1 exactly the mean reflectance.
+DVec3 kept_reflectance(const SolverState& s) {
+  const DVec3 lost(double(s.lost_reflectance[0]), double(s.lost_reflectance[1]),
+                   double(s.lost_reflectance[2]));
+  return s.mean_reflectance - lost * std::ldexp(1.0, -64);
+}
+
+// Cluster c's term of SolverState::lost_reflectance at retention r: rho_c area_c (1 - r) in
+// 2^-64 of the total area, per channel (a cluster lies in one Pure: one reflectance).
+std::array<Fixed128, 3> lost_term(const SolverState& s, size_t c, double r) {
+  std::array<Fixed128, 3> t{};
+  if (!(s.total_area > 0.0) || r >= 1.0) return t;
+  const Vec3 rho = s.material_of(s.clusters.polygons[s.clusters.first[c]]).reflectance;
+  const double scale = std::ldexp(1.0, 64) / s.total_area * double(s.clusters.area[c]) * (1.0 - r);
+  for (int ch = 0; ch < 3; ++ch) t[size_t(ch)] = to_fixed(double(rho[ch]), scale);
+  return t;
+}
+
+// 128-bit sums over the ranks, in place (collective under MPI): each as three limbs (the top one
+// signed, two of 32 bits below), which any number of ranks add up in 64 bits without carries.
+void sum_over_ranks(Ranks* ranks, std::span<Fixed128> sums) {
+  if (!ranks) return;
+  std::vector<int64_t> limbs(3 * sums.size());
+  for (size_t i = 0; i < sums.size(); ++i) {
+    limbs[3 * i] = int64_t(sums[i] >> 64);
+    limbs[3 * i + 1] = int64_t((sums[i] >> 32) & 0xffffffff);
+    limbs[3 * i + 2] = int64_t(sums[i] & 0xffffffff);
+  }
+  ranks->sum(limbs);
+  for (size_t i = 0; i < sums.size(); ++i) {
+    sums[i] = (Fixed128(limbs[3 * i]) << 64) + (Fixed128(limbs[3 * i + 1]) << 32) +
+              Fixed128(limbs[3 * i + 2]);
+  }
+}
+
 // r_p of ClusterUnshot: polygon p's mean reflectance times its area.
 double rho_area(const SolverState& s, uint32_t p) {
   return mean_component(s.material_of(p).reflectance) * double(s.hierarchy->triangles.area[p]);
@@ -157,7 +193,13 @@ void update_unshot_totals(SolverState& s) {
   s.cluster_unshot.resize(s.clusters.size());
   tbb::parallel_for(size_t(0), s.clusters.size(),
                     [&](size_t c) { s.cluster_unshot[c] = cluster_unshot(s, c); });
-  s.interreflection = mean_component(Vec3(interreflection(mean_reflectance(s))));
+  s.mean_reflectance = mean_reflectance(s);
+  s.lost_reflectance = {};
+  for (size_t c = 0; c < s.cluster_retention.size() && c < s.clusters.size(); ++c) {
+    const std::array<Fixed128, 3> term = lost_term(s, c, s.cluster_retention[c]);
+    for (size_t ch = 0; ch < 3; ++ch) s.lost_reflectance[ch] += term[ch];
+  }
+  s.interreflection = mean_component(Vec3(interreflection(kept_reflectance(s))));
   share_unshot_totals(s);
 }
 
@@ -186,21 +228,7 @@ void set_unshot_energies(SolverState& s, std::span<const uint32_t> polygons,
 
 void share_unshot_totals(SolverState& s) {
   Fixed128 sums[2] = {s.unshot_abs_fixed, s.unshot_signed_fixed};
-  if (s.ranks) {
-    // Each 128-bit sum as three limbs (the top one signed, two of 32 bits below), which any
-    // number of ranks add up in 64 bits without carries.
-    int64_t limbs[6];
-    for (int i = 0; i < 2; ++i) {
-      limbs[3 * i] = int64_t(sums[i] >> 64);
-      limbs[3 * i + 1] = int64_t((sums[i] >> 32) & 0xffffffff);
-      limbs[3 * i + 2] = int64_t(sums[i] & 0xffffffff);
-    }
-    s.ranks->sum(limbs);
-    for (int i = 0; i < 2; ++i) {
-      sums[i] = (Fixed128(limbs[3 * i]) << 64) + (Fixed128(limbs[3 * i + 1]) << 32) +
-                Fixed128(limbs[3 * i + 2]);
-    }
-  }
+  sum_over_ranks(s.ranks, sums);
   const double scale = fixed_scale(s);
   s.unshot_abs_total = double(sums[0]) / scale;
   s.unshot_signed_total = double(sums[1]) / scale;
@@ -373,6 +401,39 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   return s;
 }
 
+double ShotBalance::retention() const {
+  if (!(shot > 0.0)) return 1.0;
+  const double r = landed / shot;
+  return std::isfinite(r) ? std::clamp(r, 0.0, 1.0) : 1.0;
+}
+
+void set_retention(SolverState& s, size_t c, double r) {
+  assert(r >= 0.0 && r <= 1.0);
+  if (s.cluster_retention.size() < s.clusters.size())
+    s.cluster_retention.resize(s.clusters.size(), 1.0);
+  const std::array<Fixed128, 3> was = lost_term(s, c, s.cluster_retention[c]),
+                                now = lost_term(s, c, r);
+  for (size_t ch = 0; ch < 3; ++ch) s.lost_reflectance[ch] += now[ch] - was[ch];
+  s.cluster_retention[c] = r;
+  s.interreflection = mean_component(Vec3(interreflection(kept_reflectance(s))));
+}
+
+void exact_energy_sums(const SolverState& s, std::span<const std::span<const double>> terms,
+                       std::span<double> sums) {
+  assert(terms.size() == sums.size());
+  const double scale = fixed_scale(s);
+  std::vector<Fixed128> fixed(terms.size(), 0);
+  for (size_t k = 0; k < terms.size(); ++k) {
+    const std::span<const double> t = terms[k];
+    fixed[k] = sum_fixed(t.size(), [&](size_t i) {
+      const Fixed128 x = to_fixed(t[i], scale);
+      return FixedSums{x, x};
+    })[0];
+  }
+  sum_over_ranks(s.ranks, fixed);
+  for (size_t k = 0; k < terms.size(); ++k) sums[k] = double(fixed[k]) / scale;
+}
+
 float ambient_estimate(const SolverState& s) {
   if (s.total_area <= 0.0) return 0.0f;
   return float(s.unshot_signed_total / s.total_area * s.interreflection);
@@ -390,7 +451,7 @@ Vec3 ambient_radiosity(const SolverState& s) {
         [&](float area, Vec3 sum) { u += DVec3(sum) * (double(area) / 3.0); });
     unshot += u;
   }
-  return Vec3(unshot / s.total_area * interreflection(mean_reflectance(s)));
+  return Vec3(unshot / s.total_area * interreflection(kept_reflectance(s)));
 }
 
 }  // namespace rad

@@ -70,6 +70,16 @@ struct ClusterUnshot {
   double lo = 0.0, hi = 0.0;         // least and largest break (lo > hi: no polygon has one)
 };
 
+/// A cluster's shots summed: the energy they carried (each shot's magnitude) and the part of it
+/// the scene received (sign for sign). One shot under the roulette lands an unbiased but noisy
+/// part (a small one may land nothing, or a far receiver's gain divided by its chance); the sum
+/// is weighted by the shots' energies, so the first (major, without the roulette) weighs most.
+struct ShotBalance {
+  double shot = 0.0, landed = 0.0;
+  /// landed / shot within [0, 1]; 1 before any shot.
+  double retention() const;
+};
+
 /// One line of the convergence history.
 struct ShotRecord {
   int64_t shot;            // 1-based
@@ -167,9 +177,23 @@ struct SolverState {
   double unshot_abs_total = 0.0, unshot_signed_total = 0.0;
   Fixed128 unshot_abs_fixed = 0, unshot_signed_fixed = 0;
   std::vector<ClusterUnshot> cluster_unshot;
-  /// Cohen's interreflection factor 1 / (1 - mean reflectance), mean over the channels: the
-  /// materials change only by edits, and each edit updates the totals.
+  /// Cohen's interreflection factor 1 / (1 - kept reflectance), mean over the channels, where
+  /// the kept reflectance is the mean reflectance over the area less what the clusters' light
+  /// leaves the scene by (cluster_retention): in a closed scene each bounce lands all it
+  /// reflects, in an open one only what the surfaces' shots land. Kept current by
+  /// update_unshot_totals (materials edited) and set_retention (a shot measured).
   double interreflection = 1.0;
+  /// Per cluster: what its shots carried and what of it the scene received (ShotBalance), and
+  /// the fraction that gives (1 until the cluster shoots; empty or short: 1), the rest having
+  /// left the scene. By reciprocity also the fraction of a uniform ambient radiosity the cluster
+  /// receives: what overshooting may expect back.
+  std::vector<ShotBalance> cluster_balance;
+  std::vector<double> cluster_retention;
+  /// The area-weighted mean reflectance per channel (materials as edited) and the part of it
+  /// that retention loses, sum over clusters of rho_c area_c (1 - retention_c) in fixed point
+  /// (2^-64 of the total area): exact, so the same for any order of the shots that set it.
+  DVec3 mean_reflectance{0.0};
+  std::array<Fixed128, 3> lost_reflectance{};
   /// The polygons that may have gained from the last shot: a mask per polygon and their list
   /// in index order (shoot_to_receivers; kept between shots so a small shot costs little).
   std::vector<uint8_t> received;
@@ -274,8 +298,24 @@ inline UnshotEnergy polygon_unshot_energy(const SolverState& s, size_t p) {
 }
 
 /// The ambient term from the per-polygon unshot energies (mean over channels, signed): cheap
-/// enough to evaluate every shot.
+/// enough to evaluate every shot. What cluster c expects back of it is that times
+/// retention(s, c): a cluster that sees little of the scene receives little of it.
 float ambient_estimate(const SolverState& s);
+
+/// Cluster c's retention (SolverState::cluster_retention; 1 until it shoots).
+inline double retention(const SolverState& s, size_t c) {
+  return c < s.cluster_retention.size() ? s.cluster_retention[c] : 1.0;
+}
+
+/// Sets cluster c's retention to r (in [0, 1]) and the interreflection factor with it.
+void set_retention(SolverState& s, size_t c, double r);
+
+/// Energies summed exactly: sums[k] is the sum of terms[k] over this rank's terms and then over
+/// the ranks (collective under MPI), each term in the fixed point of the unshot totals (2^-64
+/// of the reference energy), so the sums have the same bits for any order, any thread count and
+/// any split of the terms between the ranks.
+void exact_energy_sums(const SolverState& s, std::span<const std::span<const double>> terms,
+                       std::span<double> sums);
 
 /// Cohen et al. 1988 ambient term: the unshot energy spread over the scene and reflected
 /// 1/(1 - mean reflectance) times. For display only; never added to stored radiosity.
