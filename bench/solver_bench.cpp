@@ -82,6 +82,9 @@ class RecordingBackend final : public VisibilityBackend {
     b.segments.insert(b.segments.end(), segments.begin(), segments.end());
     b.sizes.push_back(segments.size());
   }
+  SegmentHit first_hit(const Segment& segment, VisibilityStats& stats) const override {
+    return inner_.first_hit(segment, stats);
+  }
   const tbb::enumerable_thread_specific<Batches>& recorded() const { return recorded_; }
 
  private:

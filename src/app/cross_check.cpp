@@ -78,6 +78,17 @@ class ComparingBackend final : public VisibilityBackend {
     }
   }
   // The fan path of the base class makes segments and calls occluded(): both see the same rays.
+  SegmentHit first_hit(const Segment& segment, VisibilityStats& stats) const override {
+    const SegmentHit a = primary_.first_hit(segment, stats);
+    VisibilityStats ignored;
+    const SegmentHit b = secondary_.first_hit(segment, ignored);
+    Local& local = local_.local();
+    ++local.compared;
+    if (a.hit != b.hit || a.t != b.t || a.normal != b.normal) {
+      local.mismatches.push_back({segment, uint8_t(a.hit), uint8_t(b.hit), 0.0});
+    }
+    return a;
+  }
 
   size_t compared() const {
     size_t n = 0;

@@ -39,6 +39,14 @@ struct VisibilityStats {
   }
 };
 
+/// The first surface a segment meets (VisibilityBackend::first_hit).
+struct SegmentHit {
+  bool hit = false;
+  float t = 1.0f;     // where: origin + t * direction, in (0, 1)
+  Vec3 normal{0.0f};  // its front side's normal, not normalised (the backends trace merged
+                      // surfaces, not the scene's own triangles: no index is given)
+};
+
 struct VisibilityOptions {
   /// Trace batches as coherent packets where the backend can (Embree: rtcOccluded16); else one
   /// ray at a time. Answers are identical either way.
@@ -60,6 +68,12 @@ class VisibilityBackend {
   /// copies); the default makes the segments, a chunk at a time on the stack, for occluded().
   virtual void occluded_fan(const SegmentFan& fan, std::span<uint8_t> out,
                             VisibilityStats& stats) const;
+  /// The surface the segment meets first: of the triangles the shared test
+  /// (segment_hit_distance in triangle_test.h) meets, the one at the least t (the first of the
+  /// backends' common triangle order among equals); so every backend gives the same answer. For the
+  /// few segments that need to know what they meet (where a buried vertex gathers), not for shadow
+  /// rays: it may visit every triangle along the way.
+  virtual SegmentHit first_hit(const Segment& segment, VisibilityStats& stats) const = 0;
 };
 
 /// Builds the chosen backend over the hierarchy's triangles (the grid backend also uses its

@@ -37,6 +37,17 @@ class BruteBackend final : public VisibilityBackend {
     stats.triangle_tests += tests;
   }
 
+  SegmentHit first_hit(const Segment& s, VisibilityStats& stats) const override {
+    SegmentHitRecord best;
+    for (uint32_t i = 0; i < uint32_t(records_.size()); ++i) {
+      keep_nearer(best, segment_hit_distance(records_[i], s.origin, s.direction), i);
+    }
+    stats.rays += 1;
+    stats.triangle_tests += records_.size();
+    stats.occluded += best.triangle != ~0u ? 1 : 0;
+    return hit_of(best, records_);
+  }
+
  private:
   std::vector<TriangleRecord> records_;
 };

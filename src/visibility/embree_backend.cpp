@@ -79,6 +79,29 @@ void keep_shared_test_hits(const RTCFilterFunctionNArguments* args) {
   }
 }
 
+// first_hit: every candidate Embree proposes is measured with the shared test on the original
+// segment and the nearest kept; all are rejected, so Embree goes on to the next.
+struct NearestContext {
+  RTCIntersectContext embree;  // first: Embree hands the filter a pointer to it
+  Vec3 origin, direction;
+  const TriangleRecord* records;
+  SegmentHitRecord best;
+  uint64_t tests = 0;
+};
+
+void keep_nearest_shared_test_hit(const RTCFilterFunctionNArguments* args) {
+  auto* context = reinterpret_cast<NearestContext*>(args->context);
+  const auto* geometry = static_cast<const GeometryData*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const uint32_t t = geometry->first_triangle + RTCHitN_primID(args->hit, args->N, i);
+    ++context->tests;
+    keep_nearer(context->best,
+                segment_hit_distance(context->records[t], context->origin, context->direction), t);
+    args->valid[i] = 0;
+  }
+}
+
 // The triangle grown by `margin` in its plane: scaled about its incentre so each edge moves out
 // by `margin` (a sliver, whose inradius is below the margin, at most doubles).
 std::array<Vec3, 3> grown(const std::array<Vec3, 3>& t, double margin) {
@@ -168,6 +191,7 @@ class EmbreeBackend final : public VisibilityBackend {
       geometry_data_.push_back({o.first_triangle, longest});
       rtcSetGeometryUserData(geometry, &geometry_data_.back());
       rtcSetGeometryOccludedFilterFunction(geometry, keep_shared_test_hits);
+      rtcSetGeometryIntersectFilterFunction(geometry, keep_nearest_shared_test_hit);
       rtcCommitGeometry(geometry);
       rtcAttachGeometry(scene_, geometry);
       rtcReleaseGeometry(geometry);
@@ -206,6 +230,35 @@ class EmbreeBackend final : public VisibilityBackend {
     const ScopedFlushDenormals denormals;
     trace_fan_packets(fan, out);
     count(out, stats);
+  }
+
+  SegmentHit first_hit(const Segment& s, VisibilityStats& stats) const override {
+    const ScopedFlushDenormals denormals;
+    NearestContext context;
+    rtcInitIntersectContext(&context.embree);
+    context.origin = s.origin;
+    context.direction = s.direction;
+    context.records = records_.data();
+    Vec3 o, d;
+    lengthened(s.origin, s.direction, o, d);
+    RTCRayHit rh;
+    rh.ray.org_x = o.x, rh.ray.org_y = o.y, rh.ray.org_z = o.z;
+    rh.ray.dir_x = d.x, rh.ray.dir_y = d.y, rh.ray.dir_z = d.z;
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = 1.0f;
+    rh.ray.time = 0.0f;
+    rh.ray.mask = ~0u;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_, &context.embree, &rh);
+    stats.rays += 1;
+    stats.triangle_tests += context.tests;
+    const bool hit = context.best.triangle != ~0u;
+    stats.occluded += hit ? 1 : 0;
+    if (errors_.failed.load(std::memory_order_relaxed)) report_trace_error();
+    return hit_of(context.best, records_);
   }
 
  private:

@@ -79,6 +79,47 @@ class GridBackend final : public VisibilityBackend {
     stats.triangle_tests += c.tests;
   }
 
+  // Every object and every cell the segment crosses, without stopping at a hit: a triangle
+  // spanning several cells may be met in a later cell at a smaller t than one met first.
+  SegmentHit first_hit(const Segment& s, VisibilityStats& stats) const override {
+    const Vec3 o = s.origin, d = s.direction;
+    const Vec3 inv(1.0f / d.x, 1.0f / d.y, 1.0f / d.z);
+    SegmentHitRecord best;
+    Counters c;
+    const uint32_t n = uint32_t(nodes_.size());
+    for (uint32_t i = 0; i < n;) {
+      const Node& node = nodes_[i];
+      ++c.box_trials;
+      float t0 = 0.0f, t1 = 1.0f;
+      if (!clip_segment_to_box(node.lo, node.hi, o, inv, t0, t1)) {
+        i = node.skip;
+        continue;
+      }
+      ++c.box_hits;
+      if (node.grid < 0) {
+        ++i;
+        continue;
+      }
+      const UniformGrid& grid = grids_[node.grid];
+      walk_grid(grid.shape(), o, d, inv, t0, t1, [&](const GridCell& cell) {
+        ++c.cells;
+        for (uint32_t t : grid.cell(cell.index)) {
+          ++c.tests;
+          keep_nearer(best, segment_hit_distance(records_[t], o, d), t);
+        }
+        return false;
+      });
+      i = node.skip;
+    }
+    stats.rays += 1;
+    stats.occluded += best.triangle != ~0u ? 1 : 0;
+    stats.box_trials += c.box_trials;
+    stats.box_hits += c.box_hits;
+    stats.cells_visited += c.cells;
+    stats.triangle_tests += c.tests;
+    return hit_of(best, records_);
+  }
+
  private:
   // One entry of the flattened object list, depth-first: after an Assembly come its children;
   // `skip` is the entry after the whole subtree. grid < 0 for an Assembly.

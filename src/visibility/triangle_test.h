@@ -4,11 +4,13 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <type_traits>
 #include <vector>
 
 #include "core/math.h"
 #include "hierarchy/hierarchy.h"
+#include "visibility/backend.h"
 
 // The test relies on IEEE comparisons: a NaN or infinite t (parallel segments, padding lanes)
 // must fail 0 < t < 1.
@@ -17,6 +19,12 @@
 #endif
 
 namespace rad {
+
+/// The nearest hit found so far along a segment (first_hit of the backends).
+struct SegmentHitRecord {
+  float t = std::numeric_limits<float>::infinity();
+  uint32_t triangle = ~0u;
+};
 
 /// One triangle a, b, c prepared for the SPEC §6 test, 64 bytes (one cache line):
 /// e_a = a − c, e_b = b − c, n = e_a × e_b, plane n·p = plane_offset,
@@ -128,6 +136,32 @@ template <class R>
 inline bool segment_hits_triangle(const TriangleRecord& r, const Vec3& origin,
                                   const Vec3& direction) {
   return barycentric_hit(r, origin, direction);
+}
+
+/// Where the segment meets the triangle: the t in (0, 1) of segment_hits_triangle's test when it
+/// hits (the same expressions in the same order: hit exactly when that test hits), else +inf.
+inline float segment_hit_distance(const TriangleRecord& r, const Vec3& o, const Vec3& d) {
+  const float denom = r.normal.x * d.x + r.normal.y * d.y + r.normal.z * d.z;
+  const float num = r.plane_offset - (r.normal.x * o.x + r.normal.y * o.y + r.normal.z * o.z);
+  const float t = num / denom;
+  const float qx = o.x + t * d.x - r.c.x, qy = o.y + t * d.y - r.c.y, qz = o.z + t * d.z - r.c.z;
+  if (!(t > 0.0f && t < 1.0f)) return std::numeric_limits<float>::infinity();
+  const float alpha = qx * r.s_a.x + qy * r.s_a.y + qz * r.s_a.z;
+  const float beta = qx * r.s_b.x + qy * r.s_b.y + qz * r.s_b.z;
+  const bool hit = (alpha >= 0.0f) & (beta >= 0.0f) & (alpha + beta <= 1.0f);
+  return hit ? t : std::numeric_limits<float>::infinity();
+}
+
+/// Keeps the nearer of two hits (the lower triangle index at the same t); t = +inf: a miss.
+inline void keep_nearer(SegmentHitRecord& best, float t, uint32_t triangle) {
+  if (t == std::numeric_limits<float>::infinity()) return;
+  if (t < best.t || (t == best.t && triangle < best.triangle)) best = {t, triangle};
+}
+
+/// The public answer for the nearest hit found among `records`.
+inline SegmentHit hit_of(const SegmentHitRecord& best, const std::vector<TriangleRecord>& records) {
+  if (best.triangle == ~0u) return {};
+  return {true, best.t, records[best.triangle].normal};
 }
 
 /// segment_hits_triangle on a packet's eight lanes at once: bit i set when lane i is hit.

@@ -12,6 +12,7 @@
 #include "backend_params.h"
 #include "core/error.h"
 #include "scenegen/scenegen.h"
+#include "visibility/triangle_test.h"
 
 namespace rad {
 namespace {
@@ -158,6 +159,51 @@ void expect_every_prefix_matches(const std::vector<uint8_t>& one, Trace trace) {
     EXPECT_EQ(stats.rays, n);
     EXPECT_EQ(stats.occluded, size_t(std::count(one.begin(), one.begin() + n, uint8_t{1})));
   }
+}
+
+// first_hit: the nearest surface the shared test meets, as brute force over the scene's own
+// triangles finds it (the backends trace merged surfaces: the same planes, so the same t and
+// the same facing); blocked exactly when occluded() says so.
+TEST_P(BackendTest, FirstHitIsTheNearestSurfaceTheSharedTestMeets) {
+  Hierarchy h = build_hierarchy(make_triangle_soup(500, 5));
+  auto b = make(h);
+  const std::vector<TriangleRecord> records = make_triangle_records(h);
+  const std::vector<Segment> s = random_segments(h, 400, 13);
+  size_t hits = 0;
+  for (const Segment& seg : s) {
+    SegmentHitRecord best;
+    for (uint32_t t = 0; t < records.size(); ++t)
+      keep_nearer(best, segment_hit_distance(records[t], seg.origin, seg.direction), t);
+    VisibilityStats stats;
+    const SegmentHit hit = b->first_hit(seg, stats);
+    ASSERT_EQ(hit.hit, best.triangle != ~0u);
+    EXPECT_EQ(hit.hit, run(*b, {seg})[0] == 1);
+    EXPECT_EQ(stats.rays, 1u);
+    if (!hit.hit) continue;
+    ++hits;
+    EXPECT_NEAR(hit.t, best.t, 1e-5f);
+    EXPECT_GT(glm::dot(glm::normalize(hit.normal), h.triangles.normal[best.triangle]), 0.999f);
+  }
+  EXPECT_GT(hits, 40u);
+  EXPECT_LT(hits, s.size());
+}
+
+// Two squares stacked, facing each other: the segment through both meets the nearer one,
+// whichever way it runs, from behind going up and from behind going down.
+TEST_P(BackendTest, FirstHitOfTwoStackedSquaresIsTheNearerOne) {
+  Hierarchy h = build_hierarchy(
+      scene_of({pure("low", square(0.0f, 3, true)), pure("high", square(1.0f, 3, false))}));
+  auto b = make(h);
+  VisibilityStats stats;
+  const SegmentHit up = b->first_hit(between({0.1f, 0.2f, -1}, {0.1f, 0.2f, 2}), stats);
+  ASSERT_TRUE(up.hit);
+  EXPECT_NEAR(up.t, 1.0f / 3.0f, 1e-6f);
+  EXPECT_GT(up.normal.z, 0.0f);  // the low square's front, met from behind
+  const SegmentHit down = b->first_hit(between({0.1f, 0.2f, 2}, {0.1f, 0.2f, -1}), stats);
+  ASSERT_TRUE(down.hit);
+  EXPECT_NEAR(down.t, 1.0f / 3.0f, 1e-6f);
+  EXPECT_LT(down.normal.z, 0.0f);  // the high square's
+  EXPECT_FALSE(b->first_hit(between({0.1f, 0.2f, 0.2f}, {0.1f, 0.2f, 0.8f}), stats).hit);
 }
 
 TEST_P(BackendTest, BatchSizesOneToFortyMatchOneAtATime) {
