@@ -11,6 +11,7 @@ target_link_libraries(rad_reference_compare PUBLIC rad_hierarchy PRIVATE rad_sce
 
 add_library(rad_reference STATIC
   ${rad_reference_dir}/ray_scene.cpp
+  ${rad_reference_dir}/buried_points.cpp
   ${rad_reference_dir}/reference_points.cpp
   ${rad_reference_dir}/path_tracer.cpp)
 target_link_libraries(rad_reference PUBLIC rad_reference_compare rad_hierarchy TBB::tbb

@@ -107,7 +107,8 @@ std::string format_figures(const ErrorFigures& r) {
 }  // namespace
 
 ComparisonReport compare_to_reference(const ShadedFacesView& f, const ReferenceSet& ref,
-                                      std::span<const uint8_t> emitting) {
+                                      std::span<const uint8_t> emitting,
+                                      std::span<const uint8_t> buried) {
   const size_t face_count = f.indices.size() / 3;
   if (f.position.size() != f.radiosity.size() || f.face_polygon.size() != face_count ||
       ref.values.size() != ref.points.size()) {
@@ -154,6 +155,7 @@ ComparisonReport compare_to_reference(const ShadedFacesView& f, const ReferenceS
             w.z * DVec3(f.radiosity[v[2]]);
     c.reference = ref.values[i].radiosity;
     c.standard_error = ref.values[i].standard_error;
+    c.buried = i < buried.size() && buried[i] != 0;
     r.per_point.push_back(c);
   }
   std::vector<uint8_t> use(r.per_point.size(), 1);
@@ -165,18 +167,28 @@ ComparisonReport compare_to_reference(const ShadedFacesView& f, const ReferenceS
     }
     r.reflecting = figures(r.per_point, use);
   }
+  if (!buried.empty()) {
+    for (size_t i = 0; i < use.size(); ++i) {
+      const size_t p = size_t(r.per_point[i].triangle);
+      const bool emits = p < emitting.size() && emitting[p];
+      use[i] = !emits && !r.per_point[i].buried ? 1 : 0;
+      r.buried += r.per_point[i].buried ? 1 : 0;
+    }
+    r.visible = figures(r.per_point, use);
+  }
   return r;
 }
 
 void write_point_comparisons(std::ostream& out, const ComparisonReport& r) {
-  out << "index,polygon,x,y,z,rad_r,rad_g,rad_b,ref_r,ref_g,ref_b,stderr_r,stderr_g,stderr_b\n";
+  out << "index,polygon,x,y,z,rad_r,rad_g,rad_b,ref_r,ref_g,ref_b,stderr_r,stderr_g,stderr_b,"
+         "buried\n";
   for (const PointComparison& c : r.per_point) {
     out << fmt::format(
         "{},{},{:.9g},{:.9g},{:.9g},{:.7g},{:.7g},{:.7g},{:.7g},{:.7g},{:.7g},{:.3g},"
-        "{:.3g},{:.3g}\n",
+        "{:.3g},{:.3g},{}\n",
         c.index, c.triangle, c.position.x, c.position.y, c.position.z, c.rad.x, c.rad.y, c.rad.z,
         c.reference.x, c.reference.y, c.reference.z, c.standard_error.x, c.standard_error.y,
-        c.standard_error.z);
+        c.standard_error.z, c.buried ? 1 : 0);
   }
 }
 
@@ -198,6 +210,11 @@ std::string format_report(const ComparisonReport& r) {
   s += "all points:\n" + format_figures(r.all);
   if (r.reflecting.points > 0) {
     s += "points on non-emitting polygons:\n" + format_figures(r.reflecting);
+  }
+  if (r.visible.points > 0) {
+    s += fmt::format("visible points (non-emitting, {} buried inside solids left out):\n",
+                     r.buried) +
+         format_figures(r.visible);
   }
   return s;
 }

@@ -30,6 +30,7 @@ struct PointComparison {
   DVec3 rad{0.0};             // Gouraud-interpolated from rad's face
   DVec3 reference{0.0};       // the reference value
   DVec3 standard_error{0.0};  // the reference's standard error
+  bool buried = false;        // inside a solid (buried_points.h)
 };
 
 /// Error figures over a set of points.
@@ -65,6 +66,10 @@ struct ComparisonReport {
   /// Emitters' radiosity is mostly their emission, exact in any solver, yet it dominates the
   /// mean radiosity of a scene lit by a small bright source such as the Cornell box.
   ErrorFigures reflecting;
+  /// Only points on polygons that do not emit and that are not buried inside a solid (when
+  /// buried points were given; else points = 0): what a viewer can see.
+  ErrorFigures visible;
+  size_t buried = 0;  // points left out of `visible` as buried
 
   std::vector<PointComparison> per_point;
 };
@@ -72,13 +77,15 @@ struct ComparisonReport {
 /// For each reference point, finds the face of the same polygon (triangle index = polygon id)
 /// that contains it, interpolates the three vertex radiosities with the point's barycentric
 /// coordinates in that face, and gathers the error figures. `emitting[p]` != 0 marks polygon p
-/// as an emitter (for ComparisonReport::reflecting; may be empty). Throws rad::Error if a
-/// point's polygon has no faces or the view's arrays disagree in size.
+/// as an emitter (for ComparisonReport::reflecting; may be empty); `buried[i]` != 0 marks
+/// reference point i as inside a solid (for ComparisonReport::visible; may be empty). Throws
+/// rad::Error if a point's polygon has no faces or the view's arrays disagree in size.
 ComparisonReport compare_to_reference(const ShadedFacesView& faces, const ReferenceSet& reference,
-                                      std::span<const uint8_t> emitting = {});
+                                      std::span<const uint8_t> emitting = {},
+                                      std::span<const uint8_t> buried = {});
 
 /// Every point as CSV: index, polygon, x, y, z, rad_r, rad_g, rad_b, ref_r, ref_g, ref_b,
-/// stderr_r, stderr_g, stderr_b.
+/// stderr_r, stderr_g, stderr_b, buried (0 or 1).
 void write_point_comparisons(std::ostream& out, const ComparisonReport& report);
 
 /// 1 for every triangle (= polygon) of h whose material emits, else 0.

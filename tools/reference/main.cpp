@@ -20,6 +20,7 @@
 
 #include "core/error.h"
 #include "hierarchy/hierarchy.h"
+#include "reference/buried_points.h"
 #include "reference/compare.h"
 #include "reference/path_tracer.h"
 #include "reference/ply_reader.h"
@@ -51,8 +52,11 @@ int compare(const rad::Hierarchy& h, const std::string& reference_path,
       mesh.radiosity[v] += m.reflectance * amb;
     }
   }
+  const RayScene scene(h.triangles);
+  const std::vector<uint8_t> buried =
+      buried_points(scene, h.triangles, ref.points, 1e-5f * h.bounds.diagonal());
   const ComparisonReport r = compare_to_reference(
-      {mesh.position, mesh.radiosity, mesh.indices, polygon}, ref, emitting_polygons(h));
+      {mesh.position, mesh.radiosity, mesh.indices, polygon}, ref, emitting_polygons(h), buried);
   std::fputs(format_report(r).c_str(), stdout);
   if (!points_path.empty()) {
     std::ofstream out(points_path);
@@ -117,6 +121,9 @@ int main(int argc, char** argv) {
   app.add_option("--points", po.total, "points over the scene, by area")->capture_default_str();
   app.add_option("--min-per-triangle", po.min_per_triangle, "at least this many per triangle")
       ->capture_default_str();
+  app.add_flag("--corners", po.corners,
+               "points at every triangle's corners (moved inside by a thousandth) instead of "
+               "--points: rad's values at its own vertices");
   app.add_option("--seed", po.seed, "seed of the points and of the paths")->capture_default_str();
   app.add_option("--target", to.target_stderr,
                  "standard error per point, as a fraction of the channel's mean radiosity")

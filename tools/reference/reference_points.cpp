@@ -40,6 +40,16 @@ ReferencePoint point_on_triangle(const Triangles& t, int32_t triangle, float u, 
 }
 
 std::vector<ReferencePoint> make_reference_points(const Triangles& t, const PointOptions& o) {
+  if (o.corners) {
+    std::vector<ReferencePoint> points;
+    const float far = 1.0f - 2.0f * o.inset;
+    for (size_t tri = 0; tri < t.size(); ++tri) {
+      points.push_back(point_on_triangle(t, int32_t(tri), o.inset, o.inset));
+      points.push_back(point_on_triangle(t, int32_t(tri), far, o.inset));
+      points.push_back(point_on_triangle(t, int32_t(tri), o.inset, far));
+    }
+    return points;
+  }
   const std::vector<uint32_t> counts = points_per_triangle(t, o);
   const double inv_phi = 0.6180339887498949;
   const double keep = 1.0 - 3.0 * double(o.inset);

@@ -15,6 +15,10 @@ struct PointOptions {
   uint64_t seed = 1;
   /// Points are moved inside their triangle: every barycentric coordinate is at least this.
   float inset = 1e-3f;
+  /// Instead of the spread points: the three corners of every triangle, each moved inside by
+  /// `inset`, where rad's output takes its vertices' own values (no interpolation across an
+  /// element): a check of the values rad computes rather than of its mesh.
+  bool corners = false;
 };
 
 /// Points per triangle: max(min_per_triangle, its points of `total` spread systematically by
