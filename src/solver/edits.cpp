@@ -46,6 +46,7 @@ void set_material(SolverState& s, int32_t object, const Material& m, const Visib
 
 size_t force_subdivide(SolverState& s, int32_t polygon, const VisibilityBackend& vis) {
   PolygonMesh& m = s.mesh.polygons[size_t(polygon)];
+  const uint32_t made_before = uint32_t(m.vertex_count());
   std::vector<VertexState>& vs = s.vertex_states[size_t(polygon)];
   std::vector<uint32_t> leaves;
   for_each_leaf(m, [&](uint32_t e) { leaves.push_back(e); });
@@ -58,13 +59,18 @@ size_t force_subdivide(SolverState& s, int32_t polygon, const VisibilityBackend&
     ++s.stats.subdivisions;
   }
   vs.resize(m.vertex_count());
+  if (s.buried.found) {
+    find_buried_vertices(s.hierarchy->triangles, size_t(polygon), m, made_before, vis,
+                         s.shadow_offset, s.buried.moved[size_t(polygon)], s.stats.rays);
+  }
   const GatherSettings settings = gather_settings(s);
   parallel_gather(created.size(), 1, s.stats, [&](size_t begin, size_t end, GatherScratch& sc) {
     for (size_t i = begin; i != end; ++i) {
       const NewMidpoint& c = created[i];
       VertexState& mid = vs[c.vertex];
-      mid.irradiance = regather_shots(s, m.positions[c.vertex], uint32_t(polygon), false, vis,
-                                      settings, sc, &mid.major);
+      const Vec3 at = s.buried.gather_point(size_t(polygon), c.vertex, m.positions[c.vertex]);
+      mid.irradiance =
+          regather_shots(s, at, uint32_t(polygon), false, vis, settings, sc, &mid.major);
       mid.unshot = (vs[c.a].unshot + vs[c.b].unshot) * 0.5f;  // transient: interpolated
       mid.shot = Vec3(0.0f);
     }

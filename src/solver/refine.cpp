@@ -26,15 +26,20 @@ struct EdgeMidpoint {
   int64_t exact;
 };
 
-// Whether element e of polygon m (vertex states vs) is to be split: its vertices' radiosities
-// differ by more than `limit` and it is still at least `min_split_size`. Which of its edges
-// differ: in *d (01, 12, 20).
+// Whether element e of polygon p (mesh m, vertex states vs) is to be split: its vertices'
+// radiosities differ by more than `limit`, or it crosses into a solid (some of its vertices
+// buried, some not: its light to shoot falls to nothing across it, buried_vertices.h), and it
+// is still at least `min_split_size`. Which of its edges differ: in *d (01, 12, 20).
 bool needs_split(const PolygonMesh& m, const std::vector<VertexState>& vs, const Material& mat,
-                 uint32_t e, float limit, float min_split_size, std::array<bool, 3>* d) {
+                 const BuriedVertices& buried, size_t p, uint32_t e, float limit,
+                 float min_split_size, std::array<bool, 3>* d) {
   auto B = [&](uint32_t v) { return mat.emission + mat.reflectance * vs[v].irradiance; };
   const Element& el = m.elements[e];
   const Vec3 b0 = B(el.v[0]), b1 = B(el.v[1]), b2 = B(el.v[2]);
-  *d = {differs(b0, b1, limit), differs(b1, b2, limit), differs(b2, b0, limit)};
+  const bool in0 = buried.is_moved(p, el.v[0]), in1 = buried.is_moved(p, el.v[1]),
+             in2 = buried.is_moved(p, el.v[2]);
+  *d = {in0 != in1 || differs(b0, b1, limit), in1 != in2 || differs(b1, b2, limit),
+        in2 != in0 || differs(b2, b0, limit)};
   return ((*d)[0] || (*d)[1] || (*d)[2]) && element_size(m, e) >= min_split_size;
 }
 
@@ -48,7 +53,7 @@ bool needs_refinement(const SolverState& s, uint32_t p) {
   bool any = false;
   std::array<bool, 3> d;
   for_each_leaf(m, [&](uint32_t e) {
-    any = any || needs_split(m, vs, mat, e, limit, 2.0f * s.min_size, &d);
+    any = any || needs_split(m, vs, mat, s.buried, p, e, limit, 2.0f * s.min_size, &d);
   });
   return any;
 }
@@ -87,7 +92,7 @@ namespace {
 // new midpoint is computed. compute(x, scratch) sets a computed new midpoint's state.
 template <typename Compute>
 void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
-            const Compute& compute) {
+            const VisibilityBackend& vis, const Compute& compute) {
   const Triangles& tris = s.hierarchy->triangles;
   const float limit = s.options.subdivision_threshold * s.radiosity_scale;
   const float min_split_size = 2.0f * s.min_size;  // children keep sizes >= min_size
@@ -104,6 +109,7 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
   // Copies take the current shot's state from a vertex that has it: only after a shot.
   const bool may_copy = after_shot && all_exact;
   std::vector<uint64_t> splits(np, 0), interpolated(np, 0);
+  std::vector<VisibilityStats> probes(np);
 
   std::vector<ExactVertex> flat;
   // The first pass looks at every leaf of the polygons as it walks them (a list per polygon
@@ -127,7 +133,7 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
         auto consider = [&](uint32_t e) {
           const uint32_t v[3] = {m.elements[e].v[0], m.elements[e].v[1], m.elements[e].v[2]};
           std::array<bool, 3> d;
-          if (!needs_split(m, vs, mat, e, limit, min_split_size, &d)) return;
+          if (!needs_split(m, vs, mat, s.buried, p, e, limit, min_split_size, &d)) return;
           const bool d01 = d[0], d12 = d[1], d20 = d[2];
           const bool exact_edge[3][3] = {{false, d01, d20}, {d01, false, d12}, {d20, d12, false}};
           auto index_of = [&](uint32_t x) { return x == v[0] ? 0 : x == v[1] ? 1 : 2; };
@@ -158,10 +164,16 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
         };
         // Splitting a leaf appends elements, but the walk keeps indices only and does not
         // visit the new children.
+        const uint32_t made_before = uint32_t(m.vertex_count());
         if (first_pass) {
           for_each_leaf(m, consider);
         } else {
           for (uint32_t e : check[i]) consider(e);
+        }
+        // The new vertices inside solids, before any of them gathers (step 3).
+        if (s.buried.found) {
+          find_buried_vertices(tris, p, m, made_before, vis, s.shadow_offset, s.buried.moved[p],
+                               probes[i]);
         }
       }
     });
@@ -216,6 +228,7 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
   for (size_t i = 0; i < np; ++i) {
     s.stats.subdivisions += splits[i];
     s.stats.interpolated_midpoints += interpolated[i];
+    s.stats.rays += probes[i];
   }
 }
 
@@ -225,8 +238,9 @@ void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBa
                        bool major, std::span<const uint32_t> polygons) {
   const Triangles& tris = s.hierarchy->triangles;
   const GatherSettings settings = gather_settings(s);
-  refine(s, polygons, true, [&](const ExactVertex& x, GatherScratch& sc) {
-    const Vec3 at = s.mesh.polygons[x.polygon].positions[x.vertex];
+  refine(s, polygons, true, vis, [&](const ExactVertex& x, GatherScratch& sc) {
+    const Vec3 at =
+        s.buried.gather_point(x.polygon, x.vertex, s.mesh.polygons[x.polygon].positions[x.vertex]);
     std::vector<VertexState>& vs = s.vertex_states[x.polygon];
     const Vec3 rho = s.material_of(x.polygon).reflectance;
     const VertexState &a = vs[x.a], &b = vs[x.b];
@@ -243,9 +257,13 @@ void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBa
       minor_b += b.shot;
     }
     const Vec3 earlier_h = (minor_a + minor_b) * 0.5f + major_h;
-    const Vec3 earlier_u = (a.unshot - rho * a.shot + b.unshot - rho * b.shot) * 0.5f;
+    // A buried vertex's unshot radiosity holds none of its gains (buried_vertices.h).
+    const Vec3 a_u = s.buried.is_moved(x.polygon, x.a) ? a.unshot : a.unshot - rho * a.shot;
+    const Vec3 b_u = s.buried.is_moved(x.polygon, x.b) ? b.unshot : b.unshot - rho * b.shot;
+    const Vec3 earlier_u = (a_u + b_u) * 0.5f;
+    const bool buried = s.buried.is_moved(x.polygon, x.vertex);
     mid.irradiance = earlier_h + dh;
-    mid.unshot = earlier_u + rho * dh;
+    mid.unshot = buried ? earlier_u : earlier_u + rho * dh;
     mid.shot = dh;
     mid.major = major ? major_h + dh : major_h;
   });
@@ -254,18 +272,20 @@ void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBa
 void refine_after_edit(SolverState& s, const Vec3& d_rho, const VisibilityBackend& vis,
                        std::span<const uint32_t> polygons) {
   const GatherSettings settings = gather_settings(s);
-  refine(s, needing_refinement(s, polygons), false, [&](const ExactVertex& x, GatherScratch& sc) {
-    std::vector<VertexState>& vs = s.vertex_states[x.polygon];
-    const VertexState &a = vs[x.a], &b = vs[x.b];
-    VertexState& mid = vs[x.vertex];
-    // Every earlier shot gathered again: H exact.
-    mid.irradiance = regather_shots(s, s.mesh.polygons[x.polygon].positions[x.vertex], x.polygon,
-                                    false, vis, settings, sc, &mid.major);
-    // Unshot: the edit's part d_rho * H exact, the rest interpolated (transient).
-    mid.unshot = (a.unshot - d_rho * a.irradiance + b.unshot - d_rho * b.irradiance) * 0.5f +
-                 d_rho * mid.irradiance;
-    mid.shot = Vec3(0.0f);
-  });
+  refine(s, needing_refinement(s, polygons), false, vis,
+         [&](const ExactVertex& x, GatherScratch& sc) {
+           std::vector<VertexState>& vs = s.vertex_states[x.polygon];
+           const VertexState &a = vs[x.a], &b = vs[x.b];
+           VertexState& mid = vs[x.vertex];
+           // Every earlier shot gathered again: H exact.
+           const Vec3 at = s.buried.gather_point(x.polygon, x.vertex,
+                                                 s.mesh.polygons[x.polygon].positions[x.vertex]);
+           mid.irradiance = regather_shots(s, at, x.polygon, false, vis, settings, sc, &mid.major);
+           // Unshot: the edit's part d_rho * H exact, the rest interpolated (transient).
+           mid.unshot = (a.unshot - d_rho * a.irradiance + b.unshot - d_rho * b.irradiance) * 0.5f;
+           if (!s.buried.is_moved(x.polygon, x.vertex)) mid.unshot += d_rho * mid.irradiance;
+           mid.shot = Vec3(0.0f);
+         });
 }
 
 }  // namespace rad

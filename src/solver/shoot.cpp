@@ -116,10 +116,11 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
         }
         VertexState& x = vs[v];
         const VertexRays rays = kept ? vertex_rays(*kept, w.receiver, v) : VertexRays{};
-        const Vec3 dh = gather_from_source(mesh.positions[v], n, centroid, src, vis, own, sc,
-                                           kept ? &rays : nullptr);
+        const Vec3 at = s.buried.gather_point(p, v, mesh.positions[v]);
+        const Vec3 dh =
+            gather_from_source(at, n, centroid, src, vis, own, sc, kept ? &rays : nullptr);
         x.irradiance += dh;
-        x.unshot += rho * dh;
+        if (at == mesh.positions[v]) x.unshot += rho * dh;  // a buried vertex shoots nothing
         x.shot = dh;
         if (major) x.major += dh;
       }
@@ -135,7 +136,7 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
       const Vec3 dh = s.vertex_states[c.from_polygon][c.from_vertex].shot;
       VertexState& x = vs[c.vertex];
       x.irradiance += dh;
-      x.unshot += rho * dh;
+      if (!s.buried.is_moved(c.from_polygon, c.from_vertex)) x.unshot += rho * dh;
       x.shot = dh;
       if (major) x.major += dh;
     }

@@ -194,6 +194,17 @@ void measure_retention(SolverState& s, size_t c, double shot, double magnitude,
 
 std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   const auto t0 = std::chrono::steady_clock::now();
+  // Before the first shot (or the first after a checkpoint was restored): a backend is at hand.
+  // Without shadows nothing blocks a buried vertex's view, and it gathers where it is.
+  if (!s.buried.found) {
+    if (s.options.shadows) {
+      s.buried = find_all_buried_vertices(s.hierarchy->triangles, s.mesh, vis, s.shadow_offset,
+                                          s.stats.rays);
+    } else {
+      s.buried.moved.assign(s.mesh.polygons.size(), {});
+      s.buried.found = true;
+    }
+  }
   const std::optional<Shooter> shooter = choose_shooter(s);
   if (!shooter) return std::nullopt;
   const size_t c = size_t(shooter->cluster);

@@ -12,6 +12,7 @@
 #include "core/position_bits.h"
 #include "hierarchy/hierarchy.h"
 #include "mesh/patch_mesh.h"
+#include "solver/buried_vertices.h"
 #include "solver/clusters.h"
 #include "solver/kept_rays.h"
 #include "solver/occlusion_culling.h"
@@ -144,6 +145,9 @@ struct SolverState {
   /// The shooting patches (SPEC §10), of at most (max_sample_grid x max_size)^2 each.
   Clusters clusters;
   SharedVertices shared;
+  /// The vertices inside solids and where they gather instead (buried_vertices.h): found at
+  /// the first step, when a visibility backend is at hand, and for new vertices as they are made.
+  BuriedVertices buried;
   /// The flat occluders and the tree over the triangles that cull receivers hidden from a source
   /// (empty without shadows).
   OcclusionCulling culling;

@@ -1,0 +1,71 @@
+#include "solver/buried_vertices.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include "core/denormals.h"
+
+namespace rad {
+
+Vec3 find_gather_point(const Triangles& t, size_t p, const Vec3& x, const VisibilityBackend& vis,
+                       float offset, VisibilityStats& stats) {
+  const Vec3 n = t.normal[p];
+  const Vec3 b = off_surface(t.centroid(p), n, offset);
+  Vec3 a = off_surface(x, n, offset);
+  // Far enough along the normal to leave any solid: the scene's size (a solid's faces lie in
+  // its box, and the probe starts within it).
+  const float reach = 2e5f * offset;
+  bool moved = false;
+  for (int k = 0; k < kMaxSolids; ++k) {
+    const Segment probe{a, b - a};
+    uint8_t blocked = 0;
+    vis.occluded(std::span<const Segment>(&probe, 1), std::span<uint8_t>(&blocked, 1), stats);
+    if (!blocked) break;
+    const SegmentHit hit = vis.first_hit(probe, stats);
+    if (!hit.hit) break;  // the two queries disagree only in rounding at t = 0 or 1
+    // Met from the front: a wall between the vertex and the centroid, the vertex outside it.
+    if (!(glm::dot(hit.normal, probe.direction) > 0.0f)) break;
+    // Met from behind, it may still be a face grazed at its edge (the way passes a box's
+    // corner): inside, the way straight out along the normal meets a face from behind too.
+    const Segment up{a, n * reach};
+    const SegmentHit above = vis.first_hit(up, stats);
+    if (!above.hit || !(glm::dot(above.normal, n) > 0.0f)) break;
+    // From behind: the vertex is inside; it moves just past that face, then looks again.
+    const float len = glm::length(probe.direction);
+    const float past = std::min(1.0f, hit.t + 4.0f * offset / len);
+    a = a + probe.direction * past;
+    moved = true;
+    if (past >= 1.0f) break;
+  }
+  return moved ? a - n * offset : x;
+}
+
+void find_buried_vertices(const Triangles& t, size_t p, const PolygonMesh& mesh, uint32_t first,
+                          const VisibilityBackend& vis, float offset,
+                          std::vector<MovedVertex>& moved, VisibilityStats& stats) {
+  for (uint32_t v = first; v < uint32_t(mesh.vertex_count()); ++v) {
+    const Vec3 x = mesh.positions[v];
+    const Vec3 at = find_gather_point(t, p, x, vis, offset, stats);
+    if (at != x) moved.push_back({v, at});
+  }
+}
+
+BuriedVertices find_all_buried_vertices(const Triangles& t, const Mesh& mesh,
+                                        const VisibilityBackend& vis, float offset,
+                                        VisibilityStats& stats) {
+  BuriedVertices b;
+  b.moved.resize(mesh.polygons.size());
+  tbb::enumerable_thread_specific<VisibilityStats> local;
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, mesh.polygons.size(), 64), [&](const auto& range) {
+        const ScopedFlushDenormals ftz;
+        VisibilityStats& st = local.local();
+        for (size_t p = range.begin(); p != range.end(); ++p)
+          find_buried_vertices(t, p, mesh.polygons[p], 0, vis, offset, b.moved[p], st);
+      });
+  for (const VisibilityStats& st : local) stats += st;
+  b.found = true;
+  return b;
+}
+
+}  // namespace rad

@@ -1,0 +1,81 @@
+// Where a vertex gathers when it lies inside a solid of the scene.
+//
+// Real models interpenetrate: a shelf board's end is sunk a few tenths of a millimetre into the
+// side panel, a table top into its legs, a foot of a sofa into the floor. A vertex of the board
+// at that end lies inside the panel, every shadow ray from it leaves through the panel's face
+// from behind, and it gathers nothing; interpolated over its elements, its zero darkens the
+// visible board next to it. So such a vertex gathers instead at the nearest point of its own
+// polygon outside the solid, towards the polygon's centroid: the radiosity there is what the
+// visible part of its elements continues to at the contact line (as the discontinuity meshing
+// of Baum et al., "Making radiosity usable", SIGGRAPH 1991, splits surfaces where they
+// intersect, without the splitting). A vertex is inside a solid when the first surface met on
+// the way from it towards its polygon's centroid, just off the polygon, is met from behind: a
+// vertex beyond a wall (a floor running under it into the next room) meets the wall's front and
+// stays where it is.
+//
+// What a moved vertex gathers is its radiosity (what is shown and what refinement compares),
+// not light it holds to shoot: its unshot radiosity stays what the buried point receives,
+// nothing, so the part of a polygon hidden inside a solid (the floor under a box standing on
+// it) adds no light to the scene.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "core/math.h"
+#include "hierarchy/hierarchy.h"
+#include "mesh/patch_mesh.h"
+#include "visibility/backend.h"
+
+namespace rad {
+
+/// A vertex that gathers elsewhere than at its position.
+struct MovedVertex {
+  uint32_t vertex;
+  Vec3 at;  // on its polygon's plane
+};
+
+/// Per polygon, its vertices that lie inside a solid and where each gathers, by vertex index;
+/// empty for most. Derived from the geometry alone, so not saved: a state restored from a
+/// checkpoint finds them again.
+struct BuriedVertices {
+  std::vector<std::vector<MovedVertex>> moved;  // per polygon, sorted by vertex
+  bool found = false;                           // every vertex made so far was looked at
+
+  /// Where vertex v of polygon p gathers: its own position `x`, or where it was moved.
+  Vec3 gather_point(size_t p, uint32_t v, const Vec3& x) const {
+    if (p >= moved.size() || moved[p].empty()) return x;
+    const auto it = std::lower_bound(moved[p].begin(), moved[p].end(), v,
+                                     [](const MovedVertex& m, uint32_t u) { return m.vertex < u; });
+    return it != moved[p].end() && it->vertex == v ? it->at : x;
+  }
+  /// Whether vertex v of polygon p was moved (it holds no light to shoot).
+  bool is_moved(size_t p, uint32_t v) const {
+    if (p >= moved.size() || moved[p].empty()) return false;
+    const auto it = std::lower_bound(moved[p].begin(), moved[p].end(), v,
+                                     [](const MovedVertex& m, uint32_t u) { return m.vertex < u; });
+    return it != moved[p].end() && it->vertex == v;
+  }
+};
+
+/// Where the vertex at `x` of polygon `p` (triangles t) gathers: x, or the point of p just
+/// outside the solids it lies in (at most `kMaxSolids` nested or in a row). `offset`: the shadow
+/// offset, how far off the surface the probe runs and how far past a solid's face it stops.
+/// One occlusion query for a vertex that lies outside every solid (nearly all of them).
+Vec3 find_gather_point(const Triangles& t, size_t p, const Vec3& x, const VisibilityBackend& vis,
+                       float offset, VisibilityStats& stats);
+inline constexpr int kMaxSolids = 4;
+
+/// Looks at every vertex from index `first` on of polygon p's mesh and records those that move
+/// (appended: indices grow). Thread-safe for distinct polygons.
+void find_buried_vertices(const Triangles& t, size_t p, const PolygonMesh& mesh, uint32_t first,
+                          const VisibilityBackend& vis, float offset,
+                          std::vector<MovedVertex>& moved, VisibilityStats& stats);
+
+/// Every vertex of every polygon of `mesh` (in parallel; deterministic).
+BuriedVertices find_all_buried_vertices(const Triangles& t, const Mesh& mesh,
+                                        const VisibilityBackend& vis, float offset,
+                                        VisibilityStats& stats);
+
+}  // namespace rad

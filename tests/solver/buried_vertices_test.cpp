@@ -1,0 +1,135 @@
+// Vertices inside solids gather just outside them; vertices beyond a wall stay where they are.
+#include "solver/buried_vertices.h"
+
+#include <gtest/gtest.h>
+
+#include "scene_builder.h"
+#include "solver/solver.h"
+
+namespace rad {
+namespace {
+
+// A closed box [lo, hi] with its faces towards the outside: a solid.
+void add_solid_box(SceneDescription& d, const std::string& name, Vec3 lo, Vec3 hi) {
+  const Vec3 p[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z},
+                     {lo.x, hi.y, lo.z}, {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z},
+                     {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
+  const Vec3 rho(0.5f), e(0.0f);
+  testing::add_quad(d, name + " bottom", p[0], p[3], p[2], p[1], rho, e);  // normal -z
+  testing::add_quad(d, name + " top", p[4], p[5], p[6], p[7], rho, e);     // +z
+  testing::add_quad(d, name + " front", p[0], p[1], p[5], p[4], rho, e);   // -y
+  testing::add_quad(d, name + " back", p[3], p[7], p[6], p[2], rho, e);    // +y
+  testing::add_quad(d, name + " left", p[0], p[4], p[7], p[3], rho, e);    // -x
+  testing::add_quad(d, name + " right", p[1], p[2], p[6], p[5], rho, e);   // +x
+}
+
+// A board [0, 1] x [0, 1] at z = 0 facing up (triangles 0 and 1), then whatever `more` adds.
+template <typename More>
+Hierarchy board_and(More more) {
+  SceneDescription d;
+  testing::add_quad(d, "board", {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, Vec3(0.5f), Vec3(0));
+  more(d);
+  return build_hierarchy(d);
+}
+
+class BuriedVertexTest : public ::testing::TestWithParam<BackendKind> {};
+
+// The board's end x > 0.98 is sunk into a panel 4 cm thick (x from 0.98 to 1.02): its corners
+// there lie inside the panel and move just past the panel's face at x = 0.98, along the way to
+// their triangle's centroid; the corners at x = 0 stay.
+TEST_P(BuriedVertexTest, AVertexInsideASolidGathersJustOutsideIt) {
+  const Hierarchy h = board_and([](SceneDescription& d) {
+    add_solid_box(d, "panel", {0.98f, -0.5f, -0.5f}, {1.02f, 1.5f, 0.5f});
+  });
+  const auto vis = make_visibility_backend(GetParam(), h);
+  const float offset = shadow_offset(h.bounds);
+  VisibilityStats stats;
+  for (size_t p = 0; p < 2; ++p) {
+    for (const Vec3& x : h.triangles.corners[p]) {
+      const Vec3 at = find_gather_point(h.triangles, p, x, *vis, offset, stats);
+      if (x.x < 0.5f) {
+        EXPECT_EQ(at, x);
+        continue;
+      }
+      EXPECT_LT(at.x, 0.98f) << "corner (" << x.x << ", " << x.y << ") of triangle " << p;
+      EXPECT_GT(at.x, 0.98f - 20.0f * offset);
+      EXPECT_NEAR(at.z, 0.0f, 1e-6f);  // on the board's plane
+      // Along the way to the centroid.
+      const Vec3 to_c = glm::normalize(h.triangles.centroid(p) - x);
+      EXPECT_GT(glm::dot(glm::normalize(at - x), to_c), 0.9999f);
+    }
+  }
+}
+
+// The board runs under a wall 2 cm thick at x = 0.5 into the next room: its corners beyond the
+// wall are outside every solid (the probe meets the wall's front) and stay where they are.
+TEST_P(BuriedVertexTest, AVertexBeyondAWallStaysWhereItIs) {
+  const Hierarchy h = board_and([](SceneDescription& d) {
+    add_solid_box(d, "wall", {0.49f, -0.5f, -0.5f}, {0.51f, 1.5f, 1.0f});
+  });
+  const auto vis = make_visibility_backend(GetParam(), h);
+  VisibilityStats stats;
+  for (size_t p = 0; p < 2; ++p) {
+    for (const Vec3& x : h.triangles.corners[p]) {
+      EXPECT_EQ(find_gather_point(h.triangles, p, x, *vis, shadow_offset(h.bounds), stats), x);
+    }
+  }
+}
+
+// Every backend moves every vertex to the same point.
+TEST(BuriedVerticesAgreement, EveryBackendMovesTheVerticesAlike) {
+  const Hierarchy h = board_and([](SceneDescription& d) {
+    add_solid_box(d, "panel", {0.98f, -0.5f, -0.5f}, {1.02f, 1.5f, 0.5f});
+    add_solid_box(d, "leg", {-0.01f, -0.01f, -0.5f}, {0.03f, 0.03f, 0.02f});
+  });
+  const Mesh mesh = make_solver_state(h, {}).mesh;
+  std::vector<BuriedVertices> found;
+  for (BackendKind k : {BackendKind::Embree, BackendKind::Grid, BackendKind::Brute}) {
+    const auto vis = make_visibility_backend(k, h);
+    VisibilityStats stats;
+    found.push_back(
+        find_all_buried_vertices(h.triangles, mesh, *vis, shadow_offset(h.bounds), stats));
+  }
+  size_t moved = 0;
+  for (size_t p = 0; p < mesh.polygons.size(); ++p) {
+    moved += found[0].moved[p].size();
+    for (size_t b = 1; b < found.size(); ++b) {
+      ASSERT_EQ(found[b].moved[p].size(), found[0].moved[p].size());
+      for (size_t i = 0; i < found[0].moved[p].size(); ++i) {
+        EXPECT_EQ(found[b].moved[p][i].vertex, found[0].moved[p][i].vertex);
+        EXPECT_EQ(found[b].moved[p][i].at, found[0].moved[p][i].at);
+      }
+    }
+  }
+  EXPECT_GT(moved, 2u);
+}
+
+// Lit from above, the board's corners inside the panel gather about what the board gets just
+// beside the panel, not the nothing a point inside it sees.
+TEST_P(BuriedVertexTest, ASunkCornerGathersWhatTheBoardGetsBesideTheSolid) {
+  const Hierarchy h = board_and([](SceneDescription& d) {
+    add_solid_box(d, "panel", {0.98f, -0.5f, -0.5f}, {1.02f, 1.5f, 0.5f});
+    testing::add_quad(d, "lamp", {0.2f, 0.2f, 1}, {0.2f, 0.8f, 1}, {0.8f, 0.8f, 1}, {0.8f, 0.2f, 1},
+                      Vec3(0), Vec3(1));
+  });
+  const auto vis = make_visibility_backend(GetParam(), h);
+  SolverOptions o;
+  o.max_shots = 1;
+  SolverState s = make_solver_state(h, o);
+  solve(s, *vis);
+  const PolygonMesh& m = s.mesh.polygons[0];
+  // Triangle 0 is (0,0) (1,0) (1,1): vertices 1 and 2 lie in the panel.
+  const float sunk = s.vertex_states[0][1].irradiance.x;
+  const float open = s.vertex_states[0][0].irradiance.x;
+  EXPECT_GT(m.positions[1].x, 0.98f);
+  EXPECT_GT(open, 0.05f);
+  EXPECT_GT(sunk, 0.5f * open) << "a corner inside the panel gathers as if outside it";
+}
+
+INSTANTIATE_TEST_SUITE_P(AllBackends, BuriedVertexTest,
+                         ::testing::Values(BackendKind::Embree, BackendKind::Grid,
+                                           BackendKind::Brute),
+                         [](const auto& info) { return std::string(to_string(info.param)); });
+
+}  // namespace
+}  // namespace rad
