@@ -43,6 +43,7 @@ struct Regrouper {
     }
     out.name = h.scene_name;
     out.path = h.source_path;
+    out.model = h.model;
   }
 
   // Pure `i` of h as a Pure of the output, its resolved flags written on it.
@@ -245,6 +246,7 @@ Hierarchy regrouped_hierarchy(const Hierarchy& h, HierarchyMode mode) {
   out.scene_name = h.scene_name;
   out.source_path = h.source_path;
   out.dropped_degenerate = h.dropped_degenerate;
+  out.model = h.model;
   out.objects.reserve(r.out.objects.size());
   out.triangles.corners.reserve(h.triangles.size());
   out.triangles.normal.reserve(h.triangles.size());

@@ -111,7 +111,8 @@ struct Builder {
     o.box = box;
     o.triangle_count = static_cast<uint32_t>(out.triangles.size()) - o.first_triangle;
     if (o.triangle_count == 0) {
-      throw Error(d.loc, fmt::format("{} \"{}\" has no triangles of non-zero area",
+      throw Error(d.loc, fmt::format("{} \"{}\" has no triangles of non-zero area (the corners "
+                                     "of each lie on a line): give it a surface or remove it",
                                      to_string(o.kind), d.name));
     }
     return id;
@@ -169,6 +170,7 @@ Hierarchy build_hierarchy(const SceneDescription& scene, const BuildLimits& limi
   Hierarchy h;
   h.scene_name = scene.name;
   h.source_path = scene.path;
+  h.model = scene.model;
   Builder b{scene, h, limits};
   // The triangles as written (copies place more): one allocation for a model of a million.
   size_t written = 0;
@@ -209,6 +211,10 @@ bool is_pure(const Hierarchy& h, int64_t object) {
          h.objects[size_t(object)].kind == ObjectKind::Pure;
 }
 
+namespace {
+constexpr size_t kListedMaterials = 12;
+}  // namespace
+
 std::string summarize(const Hierarchy& h) {
   size_t counts[3] = {0, 0, 0};
   size_t emitters = 0, emitting_triangles = 0;
@@ -240,6 +246,30 @@ std::string summarize(const Hierarchy& h) {
   if (no_cast + no_receive + lists > 0) {
     s += fmt::format("Flags: {} Pures cast no shadows, {} receive none; {} Lights lists\n", no_cast,
                      no_receive, lists);
+  }
+  if (h.model) {
+    // The names are what --emit patterns match: the summary lists them (the first few).
+    const std::vector<std::string>& names = h.model->materials;
+    std::string listed;
+    for (size_t i = 0; i < names.size() && i < kListedMaterials; ++i) {
+      listed += (i ? ", " : "") + names[i];
+    }
+    if (names.size() > kListedMaterials) listed += ", ...";
+    s += fmt::format("Materials: {} ({})\n", names.size(), listed);
+    s += fmt::format("Textures: {} read (their mean colour), {} unreadable\n",
+                     h.model->textures.read, h.model->textures.unread);
+  } else {
+    // A description gives each Pure its own material: count the distinct ones.
+    std::vector<std::array<float, 6>> distinct;
+    for (const SceneObject& o : h.objects) {
+      if (o.kind != ObjectKind::Pure) continue;
+      const Material& m = o.material;
+      distinct.push_back({m.reflectance.x, m.reflectance.y, m.reflectance.z, m.emission.x,
+                          m.emission.y, m.emission.z});
+    }
+    std::sort(distinct.begin(), distinct.end());
+    s += fmt::format("Materials: {} distinct\n",
+                     std::unique(distinct.begin(), distinct.end()) - distinct.begin());
   }
   s += fmt::format("Bounding box: ({:.6g}, {:.6g}, {:.6g}) - ({:.6g}, {:.6g}, {:.6g})\n",
                    h.bounds.lo.x, h.bounds.lo.y, h.bounds.lo.z, h.bounds.hi.x, h.bounds.hi.y,

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,7 +56,8 @@ struct Hierarchy {
   std::vector<int32_t> roots;
   Triangles triangles;
   Aabb bounds;
-  uint32_t dropped_degenerate = 0;  // zero-area triangles removed while building
+  uint32_t dropped_degenerate = 0;    // zero-area triangles removed while building
+  std::optional<ModelSummary> model;  // the model file's materials and textures, if a model
 };
 
 /// Largest coordinate magnitude a scene may use: the form factor kernels take distances to the
@@ -86,7 +88,8 @@ bool influence_reaches(const Hierarchy& h, int32_t influence, uint32_t t);
 /// True when `object` is the index of a Pure: the objects that hold a material.
 bool is_pure(const Hierarchy& h, int64_t object);
 
-/// Counts per kind, triangles, emitters, bounds: the summary printed by `rad --check`.
+/// Counts per kind, triangles, emitters, materials (and a model's textures), bounds: the
+/// summary printed by `rad --check`.
 std::string summarize(const Hierarchy& h);
 
 }  // namespace rad

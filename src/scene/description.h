@@ -69,9 +69,23 @@ struct ObjectDescription {
   std::vector<SourceLoc> triangle_locs;        // Pure only: where each was written (or empty)
 };
 
+/// Base-colour textures of a model's materials: those read (the material reflects their mean
+/// colour) and those named but not found or not decodable (the material keeps its colour alone).
+struct TextureCounts {
+  size_t read = 0;
+  size_t unread = 0;
+};
+
+/// What a model file held besides its triangles, for the summary of `rad --check`.
+struct ModelSummary {
+  std::vector<std::string> materials;  // names, in the file's order
+  TextureCounts textures;
+};
+
 struct SceneDescription {
-  std::string name;  // the scene's name (first string of the file)
-  std::string path;  // the description file
+  std::string name;                   // the scene's name (first string of the file)
+  std::string path;                   // the description file
+  std::optional<ModelSummary> model;  // set when the scene is a model file
   std::vector<ObjectDescription> objects;
   std::vector<int32_t> roots;  // top-level objects, in file order
 };

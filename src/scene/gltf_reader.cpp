@@ -11,6 +11,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <map>
+#include <nlohmann/json.hpp>
 
 #include "scene/text_file.h"
 #include "scene/texture_mean.h"
@@ -156,7 +157,7 @@ glm::dmat4 local_transform(const tinygltf::Node& n) {
 }
 
 ModelMaterial material_of(const tinygltf::Material& g, const Context& c, const tinygltf::Model& m,
-                          const std::string& path) {
+                          const std::string& path, TextureCounts& textures) {
   ModelMaterial mat;
   mat.name = g.name.empty() ? "material" : g.name;
   mat.loc = SourceLoc{path};
@@ -165,7 +166,12 @@ ModelMaterial material_of(const tinygltf::Material& g, const Context& c, const t
   const int t = g.pbrMetallicRoughness.baseColorTexture.index;
   if (t >= 0 && size_t(t) < m.textures.size()) {
     const auto it = c.texture_mean.find(m.textures[size_t(t)].source);
-    if (it != c.texture_mean.end()) mat.reflectance *= it->second;
+    if (it != c.texture_mean.end()) {
+      mat.reflectance *= it->second;
+      ++textures.read;
+    } else {
+      ++textures.unread;
+    }
   }
   double strength = 1.0;
   const auto ext = g.extensions.find("KHR_materials_emissive_strength");
@@ -186,6 +192,63 @@ ModelMaterial material_of(const tinygltf::Material& g, const Context& c, const t
   return mat;
 }
 
+// Extensions a file may require that change where its vertices are: without them rad would
+// read wrong or no geometry.
+constexpr const char* kGeometryExtensions[] = {"KHR_draco_mesh_compression",
+                                               "EXT_meshopt_compression", "KHR_mesh_quantization"};
+
+// Why rad cannot read a file of this version and these required extensions, or "".
+std::string unsupported(const std::string& version, const std::vector<std::string>& required) {
+  if (!version.empty() && version[0] != '2') {
+    return "a glTF " + version +
+           " file: rad reads glTF 2.0; upgrade it (e.g. npx gltf-pipeline -i IN -o OUT writes "
+           "glTF 2.0)";
+  }
+  for (const std::string& e : required) {
+    for (const char* g : kGeometryExtensions) {
+      if (e == g) {
+        return "its meshes need the extension " + e +
+               ", which rad does not decode; write it without that compression (e.g. npx "
+               "@gltf-transform/cli copy IN OUT, or re-export from Blender with compression "
+               "off)";
+      }
+    }
+  }
+  return "";
+}
+
+// The version and required extensions of a file tinygltf refused, read from its JSON: a glTF
+// 1.0 or Draco-compressed file fails deep inside tinygltf with a message about an accessor.
+std::string unsupported_in_json(std::string_view bytes, bool binary) {
+  uint32_t word[5] = {0, 0, 0, 0, 0};
+  std::memcpy(word, bytes.data(), std::min(bytes.size(), sizeof word));
+  if (binary && word[1] == 1) return unsupported(std::string("1.0"), {});
+  std::string_view text = bytes;
+  if (binary) {  // the first chunk, after the 12-byte header and its own 8 bytes, is the JSON
+    if (bytes.size() < 20 || word[3] > bytes.size() - 20) return "";
+    text = bytes.substr(20, word[3]);
+  }
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+  if (!j.is_object()) return "";
+  std::string version;
+  const auto asset = j.find("asset");
+  if (asset != j.end() && asset->is_object()) {
+    const auto v = asset->find("version");
+    if (v != asset->end()) version = v->is_string() ? v->get<std::string>() : v->dump();
+  }
+  // glTF 1.0 keeps meshes, nodes and accessors in objects by id, 2.0 in arrays.
+  const auto meshes = j.find("meshes");
+  if (meshes != j.end() && meshes->is_object() && version.empty()) version = "1.0";
+  std::vector<std::string> required;
+  const auto r = j.find("extensionsRequired");
+  if (r != j.end() && r->is_array()) {
+    for (const nlohmann::json& e : *r) {
+      if (e.is_string()) required.push_back(e.get<std::string>());
+    }
+  }
+  return unsupported(version, required);
+}
+
 }  // namespace
 
 Model parse_gltf(std::string_view bytes, const std::string& path, const std::string& folder) {
@@ -203,25 +266,53 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
                                            unsigned(bytes.size()), folder)
              : loader.LoadASCIIFromString(&g, &err, &warn, bytes.data(), unsigned(bytes.size()),
                                           folder);
-  if (!ok) fail(path, "not a readable glTF file: " + err.substr(0, err.find('\n')));
+  if (!ok) {
+    const std::string why = unsupported_in_json(bytes, binary);
+    fail(path, !why.empty() ? why : "not a readable glTF file: " + err.substr(0, err.find('\n')));
+  }
+  if (const std::string why = unsupported(g.asset.version, g.extensionsRequired); !why.empty()) {
+    fail(path, why);
+  }
   if (!warn.empty()) rad::warn(SourceLoc{path}, warn.substr(0, warn.find('\n')));
+  // Any other required extension changes how materials look, not where surfaces are: the file
+  // is read without it, once said.
+  for (const std::string& e : g.extensionsRequired) {
+    rad::warn(SourceLoc{path}, "the extension " + e +
+                                   " is required but rad ignores it: materials take their base "
+                                   "colour and emission alone");
+  }
 
   Model m;
   m.path = path;
   for (const tinygltf::Material& mat : g.materials)
-    m.materials.push_back(material_of(mat, c, g, path));
+    m.materials.push_back(material_of(mat, c, g, path, m.textures));
   const uint32_t fallback = uint32_t(m.materials.size());
-  bool fallback_used = false, skipped = false;
-  size_t total = 0;
+  bool fallback_used = false;
+  size_t skipped = 0, total = 0;
 
-  const int scene = g.defaultScene >= 0 ? g.defaultScene : 0;
-  if (g.scenes.empty() || size_t(scene) >= g.scenes.size()) fail(path, "has no scene");
   struct Item {
     int node, depth;
     glm::dmat4 parent;
   };
   std::vector<Item> stack;
-  for (int root : g.scenes[size_t(scene)].nodes) stack.push_back({root, 0, glm::dmat4(1.0)});
+  if (!g.scenes.empty()) {
+    const int scene = g.defaultScene >= 0 ? g.defaultScene : 0;
+    if (size_t(scene) >= g.scenes.size()) fail(path, "its default scene is not in its scenes");
+    for (int root : g.scenes[size_t(scene)].nodes) stack.push_back({root, 0, glm::dmat4(1.0)});
+  } else {
+    // No scene (the spec leaves what to show to the reader): every node no other node holds,
+    // as other readers place them.
+    std::vector<bool> child(g.nodes.size(), false);
+    for (const tinygltf::Node& n : g.nodes) {
+      for (const int k : n.children) {
+        if (k >= 0 && size_t(k) < child.size()) child[size_t(k)] = true;
+      }
+    }
+    for (size_t i = child.size(); i-- > 0;) {
+      if (!child[i]) stack.push_back({int(i), 0, glm::dmat4(1.0)});
+    }
+  }
+  size_t meshes_placed = 0;
   size_t visits = 0;
   while (!stack.empty()) {
     const Item it = stack.back();
@@ -235,6 +326,7 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
     if (n.mesh < 0) continue;
     if (size_t(n.mesh) >= g.meshes.size()) fail(path, "a node names no such mesh");
     const tinygltf::Mesh& mesh = g.meshes[size_t(n.mesh)];
+    ++meshes_placed;
     ModelGroup group;
     group.name = !n.name.empty()      ? n.name
                  : !mesh.name.empty() ? mesh.name
@@ -244,7 +336,7 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
       const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
       if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
           mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-        skipped = true;
+        ++skipped;
         continue;
       }
       const auto pos = p.attributes.find("POSITION");
@@ -307,9 +399,21 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
     }
     if (!group.triangles.empty()) m.groups.push_back(std::move(group));
   }
-  if (skipped) rad::warn(SourceLoc{path}, "points and lines skipped: only triangles reflect light");
   if (fallback_used) m.materials.push_back({"default", Vec3(0.8f), Vec3(0.0f), SourceLoc{path}});
-  if (m.groups.empty()) fail(path, "has no triangles");
+  if (m.groups.empty()) {
+    if (skipped > 0) {
+      fail(path,
+           "has no triangles, only points and lines, which reflect no light: export the "
+           "model's surfaces");
+    }
+    fail(path, meshes_placed == 0 ? "has no triangles: its scene places no mesh"
+                                  : "has no triangles: its meshes have no triangle primitives");
+  }
+  if (skipped > 0) {
+    rad::warn(SourceLoc{path}, std::to_string(skipped) +
+                                   " primitives of points or lines skipped: only triangles "
+                                   "reflect light");
+  }
   return m;
 }
 

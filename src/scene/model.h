@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "core/math.h"
+#include "scene/description.h"
 
 namespace rad {
 
@@ -33,6 +34,7 @@ struct Model {
   std::string path;
   std::vector<ModelMaterial> materials;
   std::vector<ModelGroup> groups;
+  TextureCounts textures;
   size_t triangle_count() const {
     size_t n = 0;
     for (const ModelGroup& g : groups) n += g.triangles.size();

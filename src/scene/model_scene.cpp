@@ -45,9 +45,15 @@ SceneDescription model_to_scene(Model m, const ModelOptions& o) {
     }
     materials.push_back(mat);
   }
-  auto names = [&] {  // for the messages only
+  auto names = [&] {  // for the messages only: each name once, the first dozen
+    std::vector<std::string> seen;
     std::string all;
-    for (const ModelMaterial& mm : m.materials) all += (all.empty() ? "" : ", ") + mm.name;
+    for (const ModelMaterial& mm : m.materials) {
+      if (std::find(seen.begin(), seen.end(), mm.name) != seen.end()) continue;
+      if (seen.size() == 12) return all + ", ...";
+      seen.push_back(mm.name);
+      all += (seen.size() == 1 ? "" : ", ") + (mm.name.empty() ? "'' (unnamed)" : mm.name);
+    }
     return all;
   };
   for (size_t r = 0; r < o.emit.size(); ++r) {
@@ -108,13 +114,31 @@ SceneDescription model_to_scene(Model m, const ModelOptions& o) {
       if (!g.triangle_locs.empty()) p.triangle_locs.push_back(g.triangle_locs[t]);
     }
   }
-  if (!emits && o.require_emission) {
-    throw Error(SourceLoc{m.path},
-                "nothing in this model emits light: name the lamps' materials with --emit, "
-                "e.g. --emit '" +
-                    (m.materials.empty() ? std::string("*") : m.materials[0].name) +
-                    "=10' (materials: " + names() + ")");
+  if (!emits && (o.require_emission || o.warn_unlit)) {
+    // The example names the model's own first material: the user copies it and edits the value.
+    std::string lamp = "*";
+    for (const ModelMaterial& mm : m.materials) {
+      if (!mm.name.empty()) {
+        lamp = mm.name;
+        break;
+      }
+    }
+    const std::string example = "--emit '" + lamp + "=10'";
+    if (o.require_emission) {
+      throw Error(SourceLoc{m.path},
+                  "nothing in this model emits light: name the lamps' materials with --emit, "
+                  "e.g. " +
+                      example + " (materials: " + names() + ")");
+    }
+    warn(SourceLoc{m.path},
+         "nothing in this model emits light, so a solve will refuse it: name "
+         "the lamps' materials with --emit, e.g. " +
+             example + " (materials: " + names() + ")");
   }
+  ModelSummary summary;
+  for (const ModelMaterial& mm : m.materials) summary.materials.push_back(mm.name);
+  summary.textures = m.textures;
+  d.model = std::move(summary);
   return d;
 }
 

@@ -24,13 +24,16 @@ struct ModelOptions {
   std::vector<EmitRule> emit;
   /// A solve needs light; rad convert does not, and takes a model with no emitter as it is.
   bool require_emission = true;
+  /// With !require_emission: say in a warning that nothing emits and how to light it (rad
+  /// --check: the model is fine, the solve would refuse it).
+  bool warn_unlit = false;
 };
 
 /// The scene of a model: an Assembly named after the file, one Composite per group, one Pure per
 /// (group, material) with the material's reflectance (clamped to 1 per channel, with one warning
-/// per material) and emission (the rules override the file's). Throws rad::Error naming the
-/// --emit option when nothing emits (unless !require_emission), or when a rule matches no
-/// material.
+/// per material) and emission (the rules override the file's), with the model's summary
+/// (SceneDescription::model). Throws rad::Error naming the --emit option when nothing emits
+/// (unless !require_emission; then a warning if warn_unlit), or when a rule matches no material.
 SceneDescription model_to_scene(Model m, const ModelOptions& o);
 
 }  // namespace rad

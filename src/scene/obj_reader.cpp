@@ -5,9 +5,13 @@
 #define TINYOBJLOADER_IMPLEMENTATION
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <map>
+#include <optional>
 #include <sstream>
 
 #include "scene/text_file.h"
@@ -30,11 +34,26 @@ std::string first_line(const std::string& s) {
   return line;
 }
 
+// Statements that carry geometry rad drops: only faces reflect light.
+struct Dropped {
+  const char* word;
+  const char* what;
+  size_t count = 0;
+  int first_line = 0;
+};
+
 // The statements rad uses; tinyobjloader parses every other one too (skin weights, lines, points,
 // curves), and fuzzing found undefined behaviour there: a `vw` joint id beyond int. They carry
 // nothing a radiosity solve reads, so they are blanked out before parsing, in place (a copy of
 // the text was a tenth of an import), keeping every line where it was for the error messages.
-void blank_statements_rad_ignores(std::string& obj) {
+// Returns what of the model's geometry that drops (points, lines, free-form curves and surfaces).
+std::vector<Dropped> blank_statements_rad_ignores(std::string& obj) {
+  std::vector<Dropped> dropped = {{"p", "points (p)"},
+                                  {"l", "lines (l)"},
+                                  {"curv", "free-form curves (curv)"},
+                                  {"curv2", "free-form curves (curv2)"},
+                                  {"surf", "free-form surfaces (surf)"}};
+  int line = 1;
   for (size_t at = 0; at < obj.size();) {
     // tinyobjloader ends a line at '\r' too (a lone one included): so must the filter, or a
     // statement after a '\r' would ride through on a kept line (fuzzing found a `vw` so).
@@ -49,22 +68,142 @@ void blank_statements_rad_ignores(std::string& obj) {
     for (const char* kept : {"v", "f", "vt", "vn", "o", "g", "usemtl", "mtllib", "s"}) {
       keep |= word == kept;
     }
-    if (!keep) std::fill(obj.begin() + long(at), obj.begin() + long(end), ' ');
+    if (!keep) {
+      for (Dropped& d : dropped) {
+        if (word != d.word) continue;
+        if (d.count++ == 0) d.first_line = line;
+      }
+      std::fill(obj.begin() + long(at), obj.begin() + long(end), ' ');
+    }
+    // A "\r\n" pair ends one line.
+    if (end < obj.size() && !(obj[end] == '\r' && end + 1 < obj.size() && obj[end + 1] == '\n')) {
+      ++line;
+    }
     at = end + 1;
   }
+  return dropped;
+}
+
+// tinyobjloader names the line of a parse error in its text ("... line 28.)"): the error is
+// located there when it does.
+SourceLoc located(const std::string& path, const std::string& message) {
+  const size_t at = message.rfind("line ");
+  int line = 0;
+  if (at != std::string::npos) {
+    const char* b = message.data() + at + 5;
+    std::from_chars(b, message.data() + message.size(), line);
+  }
+  return SourceLoc{path, std::max(line, 0), 0};
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// The entry of `folder` named `name`, the exact name first, else one that differs only in case
+// (a model made on Windows or macOS names "wal67ar.jpg" and ships "Wal67ar.JPG").
+std::optional<fs::path> entry_in(const fs::path& folder, const std::string& name) {
+  std::error_code ec;
+  if (fs::exists(folder / name, ec)) return folder / name;
+  const std::string want = lower(name);
+  for (fs::directory_iterator it(folder.empty() ? fs::path(".") : folder, ec), end;
+       !ec && it != end; it.increment(ec)) {
+    if (lower(it->path().filename().string()) == want) return folder / it->path().filename();
+  }
+  return std::nullopt;
 }
 
 }  // namespace
 
+std::optional<std::string> find_texture(const std::string& folder, std::string name) {
+  // Exporters on Windows write backslashes (`map_Kd .\\wal67ar.jpg`, `textures\\wood.png`).
+  std::replace(name.begin(), name.end(), '\\', '/');
+  const fs::path written(name);
+  std::error_code ec;
+  if (written.empty()) return std::nullopt;
+  // Relative paths start from the folder of the file that names them, one part at a time in
+  // any case.
+  if (written.is_relative()) {
+    fs::path at(folder);
+    bool found = true;
+    for (const fs::path& part : written) {
+      const std::string p = part.string();
+      if (p.empty() || p == ".") continue;
+      if (p == "..") {
+        at /= p;
+        continue;
+      }
+      const std::optional<fs::path> next = entry_in(at, p);
+      if (!next) {
+        found = false;
+        break;
+      }
+      at = *next;
+    }
+    if (found && fs::is_regular_file(at, ec)) return at.string();
+  } else if (fs::is_regular_file(written, ec)) {
+    return written.string();
+  }
+  // An absolute path of the exporter's machine (C:/Users/.../wood.png), or a folder that was
+  // not shipped: the file beside the model, as other readers look for it.
+  if (written.has_filename()) {
+    const std::optional<fs::path> beside = entry_in(folder, written.filename().string());
+    if (beside && fs::is_regular_file(*beside, ec)) return beside->string();
+  }
+  return std::nullopt;
+}
+
+std::string utf8_text(std::string bytes) {
+  const auto byte = [&](size_t i) { return static_cast<unsigned char>(bytes[i]); };
+  if (bytes.size() >= 3 && byte(0) == 0xEF && byte(1) == 0xBB && byte(2) == 0xBF) {
+    // A UTF-8 byte order mark would glue itself to the first statement's keyword.
+    return bytes.substr(3);
+  }
+  if (bytes.size() < 2) return bytes;
+  const bool big = byte(0) == 0xFE && byte(1) == 0xFF;
+  if (!big && !(byte(0) == 0xFF && byte(1) == 0xFE)) return bytes;
+  // UTF-16 (Notepad's "Unicode"), either byte order: to UTF-8, an unpaired surrogate as U+FFFD.
+  std::string out;
+  out.reserve(bytes.size() / 2);
+  const auto unit = [&](size_t i) -> uint32_t {
+    return big ? (uint32_t(byte(i)) << 8 | byte(i + 1)) : (uint32_t(byte(i + 1)) << 8 | byte(i));
+  };
+  for (size_t i = 2; i + 1 < bytes.size(); i += 2) {
+    uint32_t c = unit(i);
+    if (c >= 0xD800 && c < 0xDC00 && i + 3 < bytes.size() && unit(i + 2) >= 0xDC00 &&
+        unit(i + 2) < 0xE000) {
+      c = 0x10000 + ((c - 0xD800) << 10) + (unit(i + 2) - 0xDC00);
+      i += 2;
+    } else if (c >= 0xD800 && c < 0xE000) {
+      c = 0xFFFD;
+    }
+    if (c < 0x80) {
+      out += char(c);
+    } else if (c < 0x800) {
+      out += char(0xC0 | (c >> 6)), out += char(0x80 | (c & 0x3F));
+    } else if (c < 0x10000) {
+      out += char(0xE0 | (c >> 12)), out += char(0x80 | ((c >> 6) & 0x3F));
+      out += char(0x80 | (c & 0x3F));
+    } else {
+      out += char(0xF0 | (c >> 18)), out += char(0x80 | ((c >> 12) & 0x3F));
+      out += char(0x80 | ((c >> 6) & 0x3F)), out += char(0x80 | (c & 0x3F));
+    }
+  }
+  return out;
+}
+
 Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& path,
-                     const std::string& texture_folder) {
+                     const std::string& texture_folder, const MaterialFolders& material_folders) {
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;
   tinyobj::ObjReader reader;
-  blank_statements_rad_ignores(obj);
+  obj = utf8_text(std::move(obj));
+  const std::vector<Dropped> dropped = blank_statements_rad_ignores(obj);
   if (!reader.ParseFromString(obj, std::string(mtl), config)) {
-    throw Error(SourceLoc{path}, "not a readable OBJ file: " + first_line(reader.Error()));
+    const std::string why = first_line(reader.Error());
+    throw Error(located(path, why), "not a readable OBJ file: " + why);
   }
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
   const size_t nv = attrib.vertices.size() / 3;
@@ -76,6 +215,8 @@ Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& p
 
   Model m;
   m.path = path;
+  // Materials by texture they could not read: one warning per texture, not per material.
+  std::map<std::string, std::string> unread;
   for (const tinyobj::material_t& t : reader.GetMaterials()) {
     ModelMaterial mat;
     mat.name = t.name;
@@ -83,12 +224,19 @@ Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& p
     mat.reflectance = colour(t.diffuse);
     mat.emission = colour(t.emission);
     if (!t.diffuse_texname.empty() && !texture_folder.empty()) {
-      const fs::path tex = fs::path(texture_folder) / t.diffuse_texname;
-      if (const std::optional<Vec3> mean = mean_texture_colour(tex.string())) {
+      const auto own = material_folders.find(t.name);
+      const std::string& folder = own != material_folders.end() ? own->second : texture_folder;
+      const std::optional<std::string> file = find_texture(folder, t.diffuse_texname);
+      const std::optional<Vec3> mean = file ? mean_texture_colour(*file) : std::nullopt;
+      if (mean) {
         mat.reflectance *= *mean;
+        ++m.textures.read;
       } else {
-        warn(SourceLoc{path}, "material '" + t.name + "': cannot read its texture " + tex.string() +
-                                  "; using Kd alone");
+        ++m.textures.unread;
+        std::string& names =
+            unread[(fs::path(folder) / t.diffuse_texname).string() +
+                   (file ? " (not an image stb_image decodes)" : " (no such file)")];
+        names += (names.empty() ? "'" : ", '") + t.name + "'";
       }
     }
     bool bad = false;
@@ -101,6 +249,10 @@ Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& p
                   "material '" + t.name + "' has a negative or non-finite Kd or Ke");
     }
     m.materials.push_back(std::move(mat));
+  }
+  for (const auto& [texture, names] : unread) {
+    warn(SourceLoc{path},
+         "cannot read the texture " + texture + "; material " + names + " reflects its Kd alone");
   }
   const uint32_t fallback = uint32_t(m.materials.size());
   bool fallback_used = false;
@@ -139,15 +291,38 @@ Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& p
     if (!g.triangles.empty()) m.groups.push_back(std::move(g));
   }
   if (fallback_used) m.materials.push_back({"default", Vec3(0.8f), Vec3(0.0f), SourceLoc{path}});
-  if (m.groups.empty()) throw Error(SourceLoc{path}, "has no faces");
+  // What the model loses, once per kind at its first line; a model of nothing else is refused.
+  std::string lost;
+  for (const Dropped& d : dropped) {
+    if (d.count == 0) continue;
+    const std::string what = std::to_string(d.count) + " " + d.what + " (the first at line " +
+                             std::to_string(d.first_line) + ")";
+    lost += (lost.empty() ? "" : ", ") + what;
+    if (!m.groups.empty()) {
+      warn(SourceLoc{path, d.first_line, 1},
+           std::to_string(d.count) + " " + d.what + " skipped: only faces reflect light");
+    }
+  }
+  if (m.groups.empty()) {
+    if (!lost.empty()) {
+      throw Error(SourceLoc{path}, "has no faces, only " + lost +
+                                       ", which reflect no light: export the model's surfaces");
+    }
+    throw Error(SourceLoc{path}, nv > 0 ? "has no faces (" + std::to_string(nv) +
+                                              " vertices but no 'f' line): a point cloud has no "
+                                              "surface to light"
+                                        : "has no faces");
+  }
   return m;
 }
 
 Model read_obj_file(const std::string& path, const SourceLoc& requested_at) {
-  std::string obj = read_text_file(path, requested_at);
+  std::string obj = utf8_text(read_text_file(path, requested_at));
   const fs::path folder = fs::path(path).parent_path();
-  // The MTL libraries: read here (regular files only, like every input) and handed over as text.
+  // The MTL libraries: read here (regular files only, like every input) and handed over as text,
+  // with the folder of each one's materials (their texture paths start there).
   std::string mtl;
+  MaterialFolders folders;
   const std::string_view text(obj);
   int number = 0;
   for (size_t at = 0; at < text.size(); at = std::min(text.find('\n', at), text.size()) + 1) {
@@ -158,16 +333,28 @@ Model read_obj_file(const std::string& path, const SourceLoc& requested_at) {
       continue;
     std::istringstream names{std::string(line.substr(7))};
     for (std::string name; names >> name;) {
-      const fs::path p = folder / name;
+      std::replace(name.begin(), name.end(), '\\', '/');
+      const std::optional<std::string> found = find_texture(folder.string(), name);
+      const fs::path p = found ? fs::path(*found) : folder / name;
       try {
-        mtl += read_text_file(p.string(), SourceLoc{path, number, 1});
+        const std::string library =
+            utf8_text(read_text_file(p.string(), SourceLoc{path, number, 1}));
+        std::istringstream lines(library);
+        for (std::string l; std::getline(lines, l);) {
+          std::istringstream words(l);
+          std::string word, material;
+          if (words >> word >> material && word == "newmtl") {
+            folders.emplace(material, p.parent_path().empty() ? "." : p.parent_path().string());
+          }
+        }
+        mtl += library;
         mtl += "\n";
       } catch (const Error& e) {
         warn(SourceLoc{path, number, 1}, "material library " + name + " skipped: " + e.message());
       }
     }
   }
-  return parse_obj_text(std::move(obj), mtl, path, folder.empty() ? "." : folder.string());
+  return parse_obj_text(std::move(obj), mtl, path, folder.empty() ? "." : folder.string(), folders);
 }
 
 }  // namespace rad

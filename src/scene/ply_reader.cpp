@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -157,6 +158,7 @@ PlyData parse_ply_data(std::string_view bytes, const std::string& path) {
     std::string word;
     words >> word;
     const SourceLoc loc{path, number + 1, 1};
+    // obj_info lines are the PLY standard's, and carry nothing rad reads.
     if (word.empty() || word == "ply" || word == "comment" || word == "obj_info") continue;
     if (word == "format") {
       std::string f;
@@ -192,14 +194,23 @@ PlyData parse_ply_data(std::string_view bytes, const std::string& path) {
         words >> p.name;
       }
       elements.back().properties.push_back(std::move(p));
+    } else if (elements.empty()) {
+      // Free text before the first element (Blender 2.4's "Created by Blender3D ...", written
+      // without `comment`) cannot change what the data means: other readers skip it, so does rad.
+      warn(loc, "header line '" + line.substr(0, 60) +
+                    "' skipped: not a PLY keyword (a credit line should start with 'comment')");
     } else {
-      throw Error(loc, "unknown header line '" + word + "'");
+      // Among the elements, an unknown line may be a misspelt element or property: skipping it
+      // would read the data as something else.
+      throw Error(loc, "unknown header line '" + word +
+                           "': expected element, property or comment (PLY keywords)");
     }
   }
   if (!format) throw Error(SourceLoc{path, 1, 1}, "no 'format' line");
 
   PlyData out;
-  Body in(bytes, body, *format, path, number + 1);
+  // The header's lines, then end_header's: the data starts on the line after.
+  Body in(bytes, body, *format, path, number + 2);
   bool seen_vertex = false, seen_face = false;
   for (const Element& e : elements) {
     // Each item takes at least one byte (binary) or two characters (ASCII) per property.
@@ -227,14 +238,25 @@ PlyData parse_ply_data(std::string_view bytes, const std::string& path) {
         if (!prop.list) {
           const double v = in.value(prop.type);
           if (columns[k]) {
-            if (!std::isfinite(v) || std::abs(v) > 3e38)
-              in.fail("vertex " + std::to_string(i) + " is not finite");
-            columns[k]->push_back(float(v));
+            // Only positions must be finite: a NaN normal or splat size (scanners write them)
+            // is never read by the solve.
+            const bool position = prop.name == "x" || prop.name == "y" || prop.name == "z";
+            if (position && (!std::isfinite(v) || std::abs(v) > 3e38)) {
+              in.fail("vertex " + std::to_string(i) + ": its " + prop.name + " is not finite");
+            }
+            // (A double beyond float's range has no float value: NaN stands for it.)
+            const bool fits = std::isfinite(v) && std::abs(v) <= 3e38;
+            columns[k]->push_back(fits ? float(v) : std::numeric_limits<float>::quiet_NaN());
           }
           continue;
         }
         const double count = in.value(prop.count_type);
-        if (!(count >= 0) || count > double(in.left())) in.fail("a list longer than the file");
+        if (!(count >= 0) || count != std::floor(count)) {
+          in.fail("element '" + e.name + "' item " + std::to_string(i) + ": list '" + prop.name +
+                  "' has a length of " + std::to_string(count) +
+                  ", not a whole number (do the header's properties match the data?)");
+        }
+        if (count > double(in.left())) in.fail("a list longer than the file");
         const bool indices =
             is_face && (prop.name == "vertex_indices" || prop.name == "vertex_index");
         for (size_t n = size_t(count); n > 0; --n) {
@@ -283,7 +305,13 @@ Model parse_ply(std::string_view bytes, const std::string& path) {
       g.material.push_back(0);
     }
   }
-  if (g.triangles.empty()) throw Error(SourceLoc{path}, "has no faces");
+  if (g.triangles.empty()) {
+    throw Error(SourceLoc{path}, d.face_first.empty()
+                                     ? "has no faces (" + std::to_string(d.vertex_count) +
+                                           " vertices and no 'face' element): a point cloud "
+                                           "has no surface to light"
+                                     : "has no faces of three or more vertices");
+  }
   m.groups.push_back(std::move(g));
   return m;
 }

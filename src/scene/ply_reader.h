@@ -26,8 +26,11 @@ struct PlyData {
 };
 
 /// Parses a PLY file's bytes (any numeric types). Counts in the header are checked against the
-/// file's size before anything is allocated. Throws rad::Error at path:line (ASCII) or path
-/// (binary) for malformed input.
+/// file's size before anything is allocated. `comment` and `obj_info` lines are skipped; other
+/// free text before the first `element` is skipped with a warning naming its line. Positions
+/// (x, y, z) must be finite; another property's non-finite value reads as NaN. Throws
+/// rad::Error at path:line (ASCII) or path (binary) for malformed input, an unknown header
+/// line among the elements included.
 PlyData parse_ply_data(std::string_view bytes, const std::string& path);
 
 /// The model of a PLY file: its faces fan-split, in one group with one material (grey 0.8),

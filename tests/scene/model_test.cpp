@@ -6,6 +6,7 @@
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 #include <filesystem>
@@ -389,6 +390,61 @@ TEST_F(ModelFiles, BadGltfFilesEndInOneError) {
   external.replace(uri, external.find('"', uri) - uri, "/dev/zero");
   EXPECT_THROW(parse_gltf(external, "ext.gltf", ""), Error);
   EXPECT_THROW(parse_gltf(external, "ext.gltf", dir.string()), Error);
+}
+
+TEST_F(ModelFiles, GltfOfVersionOneOrCompressedMeshesIsRefusedSayingHowToConvertIt) {
+  auto message = [](const std::string& bytes) {
+    try {
+      parse_gltf(bytes, "old.gltf", "");
+    } catch (const Error& e) {
+      return e.message();
+    }
+    return std::string("accepted");
+  };
+  // glTF 1.0 keeps its meshes by id, in an object; tinygltf reads it as an empty 2.0 file.
+  const std::string v1 = message(R"({"asset": {"version": "1.0"}, "meshes": {"box": {}}})");
+  EXPECT_NE(v1.find("glTF 1.0"), std::string::npos) << v1;
+  EXPECT_NE(v1.find("gltf-pipeline"), std::string::npos) << v1;
+  const std::string glb1 = message(std::string("glTF\x01\0\0\0\x20\0\0\0", 12) + "{}");
+  EXPECT_NE(glb1.find("glTF 1.0"), std::string::npos) << glb1;
+  std::string draco = quad_gltf();
+  draco.replace(draco.find("\"extensionsUsed\""), 0,
+                "\"extensionsRequired\": [\"KHR_draco_mesh_compression\"],\n");
+  const std::string d = message(draco);
+  EXPECT_NE(d.find("KHR_draco_mesh_compression"), std::string::npos) << d;
+  // A required extension about looks only is read without, once said.
+  std::string looks = quad_gltf();
+  looks.replace(looks.find("\"extensionsUsed\""), 0,
+                "\"extensionsRequired\": [\"KHR_materials_pbrSpecularGlossiness\"],\n");
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(parse_gltf(looks, "looks.gltf", "").groups.size(), 3u);
+  const std::string warned = testing::internal::GetCapturedStderr();
+  EXPECT_NE(warned.find("KHR_materials_pbrSpecularGlossiness is required but rad ignores it"),
+            std::string::npos)
+      << warned;
+}
+
+TEST_F(ModelFiles, GltfWithoutScenesPlacesEveryNodeNoOtherHolds) {
+  std::string bytes = quad_gltf();
+  const size_t from = bytes.find("\"scene\": 0");
+  bytes.erase(from, bytes.find("\"nodes\": [{") - from);
+  const Model m = parse_gltf(bytes, "noscene.gltf", "");
+  std::vector<std::string> names;
+  for (const ModelGroup& g : m.groups) names.push_back(g.name);
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"far", "mirror", "near"}))
+      << "far once, under its parent";
+}
+
+TEST_F(ModelFiles, GltfOfPointsAndLinesOnlyIsRefusedSayingSo) {
+  std::string lines = quad_gltf();
+  lines.replace(lines.find("\"indices\": 1,"), 0, "\"mode\": 1, ");
+  try {
+    parse_gltf(lines, "lines.gltf", "");
+    ADD_FAILURE() << "lines accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(e.message().find("only points and lines"), std::string::npos) << e.what();
+  }
 }
 
 TEST_F(ModelFiles, AGltfSceneSolvesAsAModel) {
