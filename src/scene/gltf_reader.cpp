@@ -163,7 +163,20 @@ ModelMaterial material_of(const tinygltf::Material& g, const Context& c, const t
   mat.loc = SourceLoc{path};
   const auto& f = g.pbrMetallicRoughness.baseColorFactor;
   if (f.size() >= 3) mat.reflectance = Vec3(float(f[0]), float(f[1]), float(f[2]));
-  const int t = g.pbrMetallicRoughness.baseColorTexture.index;
+  int t = g.pbrMetallicRoughness.baseColorTexture.index;
+  // Older exporters write the specular-glossiness model instead; its diffuse colour is what
+  // reflects diffusely, and readers that know the extension take it over the base colour.
+  const auto sg = g.extensions.find("KHR_materials_pbrSpecularGlossiness");
+  if (sg != g.extensions.end() && sg->second.IsObject()) {
+    const tinygltf::Value& d = sg->second.Get("diffuseFactor");
+    if (d.IsArray() && d.ArrayLen() >= 3) {
+      for (int k = 0; k < 3; ++k) mat.reflectance[k] = float(d.Get(k).GetNumberAsDouble());
+    } else {
+      mat.reflectance = Vec3(1.0f);  // the extension's default diffuse factor
+    }
+    const tinygltf::Value& dt = sg->second.Get("diffuseTexture");
+    t = dt.IsObject() && dt.Get("index").IsNumber() ? dt.Get("index").GetNumberAsInt() : -1;
+  }
   if (t >= 0 && size_t(t) < m.textures.size()) {
     const auto it = c.texture_mean.find(m.textures[size_t(t)].source);
     if (it != c.texture_mean.end()) {
@@ -234,7 +247,9 @@ std::string unsupported_in_json(std::string_view bytes, bool binary) {
   const auto asset = j.find("asset");
   if (asset != j.end() && asset->is_object()) {
     const auto v = asset->find("version");
-    if (v != asset->end()) version = v->is_string() ? v->get<std::string>() : v->dump();
+    if (v != asset->end())
+      version = v->is_string() ? v->get<std::string>()
+                               : v->dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
   }
   // glTF 1.0 keeps meshes, nodes and accessors in objects by id, 2.0 in arrays.
   const auto meshes = j.find("meshes");

@@ -447,6 +447,16 @@ TEST_F(ModelFiles, GltfOfPointsAndLinesOnlyIsRefusedSayingSo) {
   }
 }
 
+TEST_F(ModelFiles, GltfSpecularGlossinessMaterialsReflectTheirDiffuseColour) {
+  std::string bytes = quad_gltf();
+  bytes.replace(bytes.find("\"extensions\": {"), 15,
+                "\"extensions\": {\"KHR_materials_pbrSpecularGlossiness\": "
+                "{\"diffuseFactor\": [0.25, 0.5, 0.75, 1]}, ");
+  const Model m = parse_gltf(bytes, "sg.gltf", "");
+  ASSERT_EQ(m.materials.size(), 1u);
+  EXPECT_EQ(m.materials[0].reflectance, Vec3(0.25f, 0.5f, 0.75f));
+}
+
 TEST_F(ModelFiles, AGltfSceneSolvesAsAModel) {
   const std::string path = write("quad.gltf", quad_gltf());
   const Hierarchy h = build_hierarchy(read_scene_file(path));
