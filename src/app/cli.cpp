@@ -460,7 +460,12 @@ void define_solve(ModeParser& p) {
       ->check(CLI::NonNegativeNumber);
   p.apply = [&solving, &check, &cross_check](CommandLine& r) {
     solving.apply(r);
-    if (check) r.mode = Mode::Check;
+    if (check) {
+      // --check summarises a model without lamps and warns how to light it; the solve refuses.
+      r.mode = Mode::Check;
+      r.job.input.model.require_emission = false;
+      r.job.input.model.warn_unlit = true;
+    }
     if (!cross_check.empty()) {
       if (check) throw CLI::ValidationError("--cross-check", "solves; --check does not");
       try {
