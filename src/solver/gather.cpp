@@ -231,6 +231,20 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
   const std::optional<float> ff = st.method == FormFactorMethod::Analytic
                                       ? exact_form_factor(x, n, src, side, sums)
                                       : std::nullopt;
+  // No exact form factor: a curved source seen from close to its surface (a cushion from the
+  // seat beside it). A coarse sample sits at its stratum's centroid, inside the curve, with the
+  // stratum's mean normal, and weighs what lies close far worse than EQ 7 over the fine points,
+  // each with its stratum's visibility (test Gather.BesideACurvedSource...: 56% off against
+  // 23%). Every stratum then gets a ray: one whose mean normal faces away may still hold points
+  // that face the receiver.
+  const bool fine_eq7 = st.method == FormFactorMethod::Analytic && !ff && !src.fine_sample.empty();
+  if (fine_eq7) {
+    na = 0;
+    for (size_t i = 0; i < ns; ++i) {
+      scratch.active[na] = uint32_t(i);
+      na += sm.area[i] > 0.0f ? 1 : 0;
+    }
+  }
   if (ff ? *ff <= 0.0f : na == 0) {
     ++scratch.stats.culled;
     return Vec3(0.0f);
@@ -256,6 +270,16 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
   const bool traced = st.shadows && !cut && na > 0;
   if (traced) trace_active(x, n, src, na, vis, st, scratch, kept);
 
+  if (fine_eq7) {
+    scratch.coarse_visible.assign(ns, traced ? 0.0f : 1.0f);
+    if (traced) {
+      for (size_t j = 0; j < na; ++j)
+        scratch.coarse_visible[scratch.active[j]] = scratch.blocked[j] ? 0.0f : 1.0f;
+    }
+    return add_kernels<false>(src.fine_sample, x, n, scratch.coarse_visible.data(),
+                              src.fine_group_parent.data(), nullptr)
+        .weighted();
+  }
   // Near field (exact form factor only): the unshot radiosity weighted over the fine samples,
   // each taking its stratum's visibility.
   if (ff && !src.fine_sample.empty() && glm::dot(x - src.centroid, src.axis) < src.near_distance) {

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "scene_builder.h"
@@ -57,6 +58,70 @@ TEST(Gather, VertexOnTheLineWhereTwoSurfacesMeetGetsTheLimitFromInside) {
   EXPECT_NEAR(with_inset, inside, 0.01f * inside);
   EXPECT_LT(without_inset, 0.05f * inside) << "the trap: edge-on, nothing gathered";
   EXPECT_LT(original, 0.05f * inside);
+}
+
+// An emitting column (a convex cylinder, outward faces: curved clusters) standing on a floor.
+// Floor points 2 to 25 mm from it lie behind the planes of some of a cluster's triangles, where
+// no exact form factor applies, and take EQ 7 over the source's points instead; the truth is
+// the sum of the exact form factors of the column's triangles that face the point (the column
+// hides nothing from it: the triangles that face a point are all in its view). Over the coarse
+// samples (each at its stratum's centroid, inside the curve) EQ 7 is 56% off here; over the
+// fine points 23%: this bounds the fine points' error, it does not claim they are exact (EQ 7's
+// disc kernel still misjudges points a few millimetres from a patch centimetres wide).
+TEST(Gather, BesideACurvedSourceTheGainIsItsTrianglesExactFormFactor) {
+  SceneDescription d;
+  testing::add_quad(d, "floor", {-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, Vec3(0.5f),
+                    Vec3(0));
+  ObjectDescription column;
+  column.name = "column";
+  column.kind = ObjectKind::Pure;
+  column.material = {Vec3(0.0f), Vec3(1.0f)};
+  const int segments = 48, rings = 4;
+  const float r = 0.2f, height = 0.6f;
+  auto at = [&](int i, int j) {
+    const float a = 6.2831853f * float(i) / float(segments);
+    return Vec3(r * std::cos(a), r * std::sin(a), height * float(j) / float(rings));
+  };
+  for (int i = 0; i < segments; ++i) {
+    for (int j = 0; j < rings; ++j) {
+      column.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      column.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  }
+  column.triangle_locs.resize(column.triangles.size());
+  d.roots.push_back(int32_t(d.objects.size()));
+  d.objects.push_back(std::move(column));
+  const Hierarchy h = build_hierarchy(d);
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  const SolverState s = make_solver_state(h, {});
+  std::vector<ShotSource> sources;
+  for (size_t c = 0; c < s.clusters.size(); ++c) {
+    if (h.triangles.object[s.clusters.polygons[s.clusters.first[c]]] != 0)
+      sources.push_back(make_shot_source(s, int32_t(c)));
+  }
+  ASSERT_GT(sources.size(), 1u);
+  GatherSettings g = gather_settings(s);
+  g.inset = 0.0f;
+  GatherScratch sc;
+  double error = 0.0, truth_sum = 0.0;
+  int points = 0;
+  for (int k = 0; k < 24; ++k) {
+    const float a = 0.37f + 6.2831853f * float(k) / 24.0f, gap = 0.002f + 0.001f * float(k);
+    const Vec3 x((r + gap) * std::cos(a), (r + gap) * std::sin(a), 0.0f), n(0, 0, 1);
+    float truth = 0.0f, gain = 0.0f;
+    for (size_t t = 2; t < h.triangles.size(); ++t) {
+      const auto& c = h.triangles.corners[t];
+      if (glm::dot(h.triangles.normal[t], x - c[0]) <= 0.0f) continue;  // faces away
+      truth += point_to_triangle_form_factor(x, n, c[0], c[1], c[2]);
+    }
+    for (const ShotSource& src : sources) gain += gather_from_source(x, n, x, src, *vis, g, sc).x;
+    error += std::abs(double(gain) - truth);
+    truth_sum += truth;
+    ++points;
+  }
+  std::printf("beside a curved source: %d points, mean form factor %.4f, mean error %.2f%%\n",
+              points, truth_sum / points, 100.0 * error / truth_sum);
+  EXPECT_LT(error / truth_sum, 0.3);
 }
 
 TEST(Gather, IntensityCutSkipsRaysAndCountsThem) {
