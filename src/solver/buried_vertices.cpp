@@ -8,7 +8,8 @@
 namespace rad {
 
 Vec3 find_gather_point(const Triangles& t, size_t p, const Vec3& x, const VisibilityBackend& vis,
-                       float offset, VisibilityStats& stats) {
+                       const BuriedProbe& probe_settings, VisibilityStats& stats) {
+  const float offset = probe_settings.offset;
   const Vec3 n = t.normal[p];
   const Vec3 b = off_surface(t.centroid(p), n, offset);
   Vec3 a = off_surface(x, n, offset);
@@ -37,32 +38,33 @@ Vec3 find_gather_point(const Triangles& t, size_t p, const Vec3& x, const Visibi
     moved = true;
     if (past >= 1.0f) break;
   }
-  return moved ? a - n * offset : x;
+  const Vec3 at = a - n * offset;
+  return moved && glm::length(at - x) <= probe_settings.depth ? at : x;
 }
 
 void find_buried_vertices(const Triangles& t, size_t p, const PolygonMesh& mesh, uint32_t first,
-                          const VisibilityBackend& vis, float offset,
+                          const VisibilityBackend& vis, const BuriedProbe& probe,
                           std::vector<MovedVertex>& moved, VisibilityStats& stats) {
   for (uint32_t v = first; v < uint32_t(mesh.vertex_count()); ++v) {
     const Vec3 x = mesh.positions[v];
-    const Vec3 at = find_gather_point(t, p, x, vis, offset, stats);
+    const Vec3 at = find_gather_point(t, p, x, vis, probe, stats);
     if (at != x) moved.push_back({v, at});
   }
 }
 
 BuriedVertices find_all_buried_vertices(const Triangles& t, const Mesh& mesh,
-                                        const VisibilityBackend& vis, float offset,
+                                        const VisibilityBackend& vis, const BuriedProbe& probe,
                                         VisibilityStats& stats) {
   BuriedVertices b;
   b.moved.resize(mesh.polygons.size());
   tbb::enumerable_thread_specific<VisibilityStats> local;
-  tbb::parallel_for(
-      tbb::blocked_range<size_t>(0, mesh.polygons.size(), 64), [&](const auto& range) {
-        const ScopedFlushDenormals ftz;
-        VisibilityStats& st = local.local();
-        for (size_t p = range.begin(); p != range.end(); ++p)
-          find_buried_vertices(t, p, mesh.polygons[p], 0, vis, offset, b.moved[p], st);
-      });
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.polygons.size(), 64),
+                    [&](const auto& range) {
+                      const ScopedFlushDenormals ftz;
+                      VisibilityStats& st = local.local();
+                      for (size_t p = range.begin(); p != range.end(); ++p)
+                        find_buried_vertices(t, p, mesh.polygons[p], 0, vis, probe, b.moved[p], st);
+                    });
   for (const VisibilityStats& st : local) stats += st;
   b.found = true;
   return b;

@@ -59,23 +59,33 @@ struct BuriedVertices {
   }
 };
 
+/// How vertices are probed. A vertex deeper inside than `depth` stays where it is, dark: only
+/// the vertices of elements that reach out of the solid shape what is seen (refinement splits
+/// elements that cross into a solid down to the smallest size), and the inside of a footprint
+/// (the floor under a box standing on it) is dark, as no light reaches it.
+struct BuriedProbe {
+  float offset = 0.0f;  // the shadow offset: how far off the surface the probe runs and how
+                        // far past a solid's face a moved vertex stops
+  float depth = 0.0f;   // how far a vertex may move
+};
+
 /// Where the vertex at `x` of polygon `p` (triangles t) gathers: x, or the point of p just
-/// outside the solids it lies in (at most `kMaxSolids` nested or in a row). `offset`: the shadow
-/// offset, how far off the surface the probe runs and how far past a solid's face it stops.
-/// One occlusion query for a vertex that lies outside every solid (nearly all of them).
+/// outside the solids it lies in (at most `kMaxSolids` nested or in a row), if that is within
+/// probe.depth of x. One occlusion query for a vertex that lies outside every solid (nearly all
+/// of them).
 Vec3 find_gather_point(const Triangles& t, size_t p, const Vec3& x, const VisibilityBackend& vis,
-                       float offset, VisibilityStats& stats);
+                       const BuriedProbe& probe, VisibilityStats& stats);
 inline constexpr int kMaxSolids = 4;
 
 /// Looks at every vertex from index `first` on of polygon p's mesh and records those that move
 /// (appended: indices grow). Thread-safe for distinct polygons.
 void find_buried_vertices(const Triangles& t, size_t p, const PolygonMesh& mesh, uint32_t first,
-                          const VisibilityBackend& vis, float offset,
+                          const VisibilityBackend& vis, const BuriedProbe& probe,
                           std::vector<MovedVertex>& moved, VisibilityStats& stats);
 
 /// Every vertex of every polygon of `mesh` (in parallel; deterministic).
 BuriedVertices find_all_buried_vertices(const Triangles& t, const Mesh& mesh,
-                                        const VisibilityBackend& vis, float offset,
+                                        const VisibilityBackend& vis, const BuriedProbe& probe,
                                         VisibilityStats& stats);
 
 }  // namespace rad

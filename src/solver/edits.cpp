@@ -61,7 +61,7 @@ size_t force_subdivide(SolverState& s, int32_t polygon, const VisibilityBackend&
   vs.resize(m.vertex_count());
   if (s.buried.found) {
     find_buried_vertices(s.hierarchy->triangles, size_t(polygon), m, made_before, vis,
-                         s.shadow_offset, s.buried.moved[size_t(polygon)], s.stats.rays);
+                         buried_probe(s), s.buried.moved[size_t(polygon)], s.stats.rays);
   }
   const GatherSettings settings = gather_settings(s);
   parallel_gather(created.size(), 1, s.stats, [&](size_t begin, size_t end, GatherScratch& sc) {

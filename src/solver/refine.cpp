@@ -172,7 +172,7 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
         }
         // The new vertices inside solids, before any of them gathers (step 3).
         if (s.buried.found) {
-          find_buried_vertices(tris, p, m, made_before, vis, s.shadow_offset, s.buried.moved[p],
+          find_buried_vertices(tris, p, m, made_before, vis, buried_probe(s), s.buried.moved[p],
                                probes[i]);
         }
       }
@@ -249,7 +249,7 @@ void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBa
                                        vis, receiver_settings(settings, s, x.polygon), sc);
     Vec3 major_h(0.0f);
     regather_shots(s, at, x.polygon, true, vis, settings, sc, &major_h);
-    // Earlier minor shots: interpolated from the edge's ends (SPEC §5).
+    // Earlier minor shots: interpolated from the edge's ends (design §5).
     Vec3 minor_a = a.irradiance - a.shot - a.major;
     Vec3 minor_b = b.irradiance - b.shot - b.major;
     if (major) {  // the ends' major part includes this shot's

@@ -198,7 +198,7 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   // Without shadows nothing blocks a buried vertex's view, and it gathers where it is.
   if (!s.buried.found) {
     if (s.options.shadows) {
-      s.buried = find_all_buried_vertices(s.hierarchy->triangles, s.mesh, vis, s.shadow_offset,
+      s.buried = find_all_buried_vertices(s.hierarchy->triangles, s.mesh, vis, buried_probe(s),
                                           s.stats.rays);
     } else {
       s.buried.moved.assign(s.mesh.polygons.size(), {});

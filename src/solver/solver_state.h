@@ -142,7 +142,7 @@ struct SolverState {
   std::vector<std::vector<VertexState>> vertex_states;
   /// Materials per hierarchy object (copied so they can be edited between shots).
   std::vector<Material> materials;
-  /// The shooting patches (SPEC §10), of at most (max_sample_grid x max_size)^2 each.
+  /// The shooting patches (design §10), of at most (max_sample_grid x max_size)^2 each.
   Clusters clusters;
   SharedVertices shared;
   /// The vertices inside solids and where they gather instead (buried_vertices.h): found at
@@ -233,6 +233,12 @@ struct SolverState {
     return reference_energy > 0.0 ? unshot_abs_total / reference_energy : 0.0;
   }
 };
+
+/// How vertices inside solids are probed (buried_vertices.h): a vertex moves at most the smallest
+/// elements' size, as far as the last elements that reach out of a solid extend.
+inline BuriedProbe buried_probe(const SolverState& s) {
+  return {s.shadow_offset, s.min_size};
+}
 
 /// The diameter of a sphere that holds every corner, about the smallest: what the default
 /// element sizes scale with. Unlike the bounding box's diagonal it does not change when the
