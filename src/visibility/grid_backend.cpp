@@ -83,34 +83,15 @@ class GridBackend final : public VisibilityBackend {
   // spanning several cells may be met in a later cell at a smaller t than one met first.
   SegmentHit first_hit(const Segment& s, VisibilityStats& stats) const override {
     const Vec3 o = s.origin, d = s.direction;
-    const Vec3 inv(1.0f / d.x, 1.0f / d.y, 1.0f / d.z);
     SegmentHitRecord best;
     Counters c;
-    const uint32_t n = uint32_t(nodes_.size());
-    for (uint32_t i = 0; i < n;) {
-      const Node& node = nodes_[i];
-      ++c.box_trials;
-      float t0 = 0.0f, t1 = 1.0f;
-      if (!clip_segment_to_box(node.lo, node.hi, o, inv, t0, t1)) {
-        i = node.skip;
-        continue;
+    walk_objects(o, d, c, [&](const UniformGrid& grid, const GridCell& cell) {
+      for (uint32_t t : grid.cell(cell.index)) {
+        ++c.tests;
+        keep_nearer(best, segment_hit_distance(records_[t], o, d), t);
       }
-      ++c.box_hits;
-      if (node.grid < 0) {
-        ++i;
-        continue;
-      }
-      const UniformGrid& grid = grids_[node.grid];
-      walk_grid(grid.shape(), o, d, inv, t0, t1, [&](const GridCell& cell) {
-        ++c.cells;
-        for (uint32_t t : grid.cell(cell.index)) {
-          ++c.tests;
-          keep_nearer(best, segment_hit_distance(records_[t], o, d), t);
-        }
-        return false;
-      });
-      i = node.skip;
-    }
+      return false;
+    });
     stats.rays += 1;
     stats.occluded += best.triangle != ~0u ? 1 : 0;
     stats.box_trials += c.box_trials;
@@ -153,13 +134,12 @@ class GridBackend final : public VisibilityBackend {
     nodes_[at].skip = uint32_t(nodes_.size());
   }
 
-  // SPEC §6: walk the object list, testing boxes; Assemblies descend, Composites and Pures walk
-  // their grid; the first triangle hit ends the ray. Returns it, or kNoTriangle.
-  uint32_t trace(const Segment& s, Counters& c) const {
-    const Vec3 o = s.origin, d = s.direction;
+  // design §6: walk the object list, testing boxes; Assemblies descend, Composites and Pures
+  // walk their grid, visit(grid, cell) for each cell the segment crosses in order along it,
+  // until visit returns true.
+  template <typename Visit>
+  void walk_objects(const Vec3& o, const Vec3& d, Counters& c, Visit&& visit) const {
     const Vec3 inv(1.0f / d.x, 1.0f / d.y, 1.0f / d.z);
-    uint32_t mailbox[kMailboxSize];
-    for (uint32_t& m : mailbox) m = ~0u;
     const uint32_t n = uint32_t(nodes_.size());
     for (uint32_t i = 0; i < n;) {
       const Node& node = nodes_[i];
@@ -175,40 +155,51 @@ class GridBackend final : public VisibilityBackend {
         continue;
       }
       const UniformGrid& grid = grids_[node.grid];
-      uint32_t hit = kNoTriangle;
-      walk_grid(grid.shape(), o, d, inv, t0, t1, [&](const GridCell& cell) {
-        ++c.cells;
-        const std::span<const uint32_t> ids = grid.cell(cell.index);
-        const uint32_t first_packet = grid.first_packet(cell.index);
-        if (first_packet != UniformGrid::kNoPackets) {
-          // A dense cell: eight triangles per test, no mailbox (a repeated lane costs nothing).
-          for (uint32_t at = 0; at < ids.size(); at += TrianglePacket::kLanes) {
-            const uint32_t lanes =
-                segment_hits_packet(grid.packet(first_packet + at / TrianglePacket::kLanes), o, d);
-            c.tests += std::min<size_t>(TrianglePacket::kLanes, ids.size() - at);
-            if (lanes != 0) {
-              hit = ids[at + uint32_t(std::countr_zero(lanes))];
-              return true;
-            }
-          }
-          return false;
-        }
-        for (uint32_t t : ids) {
-          uint32_t& slot = mailbox[t & (kMailboxSize - 1)];
-          if (slot == t) continue;
-          slot = t;
-          ++c.tests;
-          if (segment_hits_triangle(records_[t], o, d)) {
-            hit = t;
+      if (walk_grid(grid.shape(), o, d, inv, t0, t1, [&](const GridCell& cell) {
+            ++c.cells;
+            return visit(grid, cell);
+          })) {
+        return;
+      }
+      i = node.skip;
+    }
+  }
+
+  // The first triangle hit ends the ray. Returns it, or kNoTriangle.
+  uint32_t trace(const Segment& s, Counters& c) const {
+    const Vec3 o = s.origin, d = s.direction;
+    uint32_t mailbox[kMailboxSize];
+    for (uint32_t& m : mailbox) m = ~0u;
+    uint32_t hit = kNoTriangle;
+    walk_objects(o, d, c, [&](const UniformGrid& grid, const GridCell& cell) {
+      const std::span<const uint32_t> ids = grid.cell(cell.index);
+      const uint32_t first_packet = grid.first_packet(cell.index);
+      if (first_packet != UniformGrid::kNoPackets) {
+        // A dense cell: eight triangles per test, no mailbox (a repeated lane costs nothing).
+        for (uint32_t at = 0; at < ids.size(); at += TrianglePacket::kLanes) {
+          const uint32_t lanes =
+              segment_hits_packet(grid.packet(first_packet + at / TrianglePacket::kLanes), o, d);
+          c.tests += std::min<size_t>(TrianglePacket::kLanes, ids.size() - at);
+          if (lanes != 0) {
+            hit = ids[at + uint32_t(std::countr_zero(lanes))];
             return true;
           }
         }
         return false;
-      });
-      if (hit != kNoTriangle) return hit;
-      i = node.skip;
-    }
-    return kNoTriangle;
+      }
+      for (uint32_t t : ids) {
+        uint32_t& slot = mailbox[t & (kMailboxSize - 1)];
+        if (slot == t) continue;
+        slot = t;
+        ++c.tests;
+        if (segment_hits_triangle(records_[t], o, d)) {
+          hit = t;
+          return true;
+        }
+      }
+      return false;
+    });
+    return hit;
   }
 
   std::vector<TriangleRecord> records_;
