@@ -138,7 +138,7 @@ def tessellation(out):
                      f"{all_pts[0]}% / {all_pts[1]}%", f"{non[0]}% / {non[1]}%"])
     print(table(rows, ["k", "triangles", "clusters", "s", "÷ k=1", "shots", "vertices", "unshot",
                        "MiB", "all points: mean / bias", "non-emitting: mean / bias"]))
-    print("  targets (issue 12): mean ≤ 1% and |bias| ≤ 0.5% at every k; k=24 within 2x the time "
+    print("  targets: mean ≤ 1% and |bias| ≤ 0.5% at every k; k=24 within 2x the time "
           "of k=1; shots not growing with k")
     furnace = os.path.join(out, "tess_furnace_k8.ply")
     if os.path.exists(furnace):
@@ -163,7 +163,7 @@ def agreement(out):
         for l in keep:
             print("  " + l)
         print("  => " + verdict)
-    print("  target (issue 13): same vertices, radiosity within 1e-5 of the largest, no ray "
+    print("  target: same vertices, radiosity within 1e-5 of the largest, no ray "
           "beyond rounding distance")
 
 
@@ -416,7 +416,7 @@ def main():
           f"    all points {reached(best)}\n"
           f"    non-emitting points alone (the light's exact emission left out of the mean) "
           f"{reached(best_reflecting)}")
-    print("  for scale (issue 6): Blender 3.4 Cycles baking the box: 23.5 s for 3.9%, 172 s for 1.8%")
+    print("  for scale: Blender 3.4 Cycles baking the box: 23.5 s for 3.9%, 172 s for 1.8%")
     tessellation(out)
     agreement(out)
 

@@ -1,4 +1,4 @@
-// The hierarchy of SPEC §3 built automatically (SPEC §8): what a model file gets, and a
+// The hierarchy of design §3 built automatically (design §8): what a model file gets, and a
 // description on request (--hierarchy auto).
 #pragma once
 
@@ -27,7 +27,7 @@ HierarchyMode default_hierarchy_mode(const std::string& scene_path);
 
 /// The Pures of `h` (name, material, placed triangles, flags resolved onto each) regrouped by a
 /// top-down split of their boxes: a group of at most 32 Pures whose boxes fill at least a
-/// quarter of its own box (little empty space, SPEC §3), none of them more than half of it (a
+/// quarter of its own box (little empty space, design §3), none of them more than half of it (a
 /// room's shell is not a part of the chairs inside it) nor more than 4 times as dense in
 /// triangles as the group (a finely tessellated plant beside a sofa would crowd a few cells of
 /// one grid), becomes a Composite (a chair: one grid over its parts); any other group is split in

@@ -1,4 +1,4 @@
-// The object hierarchy of SPEC §3 (Assembly / Composite / Pure) over a flat table of
+// The object hierarchy of design §3 (Assembly / Composite / Pure) over a flat table of
 // world-space triangles, laid out depth-first so every object's triangles are contiguous.
 #pragma once
 
@@ -41,7 +41,7 @@ struct SceneObject {
   uint32_t first_triangle = 0;  // triangles below this object: [first, first + count)
   uint32_t triangle_count = 0;
   Material material;  // Pure only
-  // The per-object flags of SPEC §8, resolved: the object's own setting, else its nearest
+  // The per-object flags of design §8, resolved: the object's own setting, else its nearest
   // ancestor's, else the default.
   bool casts_shadows = true;       // false: shadow rays pass through its triangles
   bool receives_shadows = true;    // false: its vertices take every visibility term as 1

@@ -1,4 +1,4 @@
-// The radiosity mesh: one vertex table and one element tree per polygon (SPEC §5).
+// The radiosity mesh: one vertex table and one element tree per polygon (design §5).
 #pragma once
 
 #include <cstdint>

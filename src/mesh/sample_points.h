@@ -1,4 +1,4 @@
-// Sample points on a source polygon and their place in its subdivision (SPEC §4-5).
+// Sample points on a source polygon and their place in its subdivision (design §4-5).
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// Splitting a subdivision element into four by its edge midpoints (SPEC §5).
+// Splitting a subdivision element into four by its edge midpoints (design §5).
 #pragma once
 
 #include <cstdint>

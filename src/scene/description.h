@@ -1,4 +1,4 @@
-// The scene as written in a description file (SPEC §2): a tree of objects, as parsed.
+// The scene as written in a description file (design §2): a tree of objects, as parsed.
 #pragma once
 
 #include <array>
@@ -18,7 +18,7 @@ enum class ObjectKind : uint8_t { Assembly, Composite, Pure };
 const char* to_string(ObjectKind kind);
 
 /// A Pure's surface: reflectance = Reflectivity x Color, emission = Emission x Color, per
-/// channel (SPEC §2). Emission is radiant exitance, in the same units as radiosity.
+/// channel (design §2). Emission is radiant exitance, in the same units as radiosity.
 struct Material {
   Vec3 reflectance{0.0f};
   Vec3 emission{0.0f};
@@ -30,7 +30,7 @@ struct NamedObject {
   SourceLoc loc;
 };
 
-/// The original's proposed per-object flags (SPEC §8), as written; unset means "as the parent".
+/// The original's proposed per-object flags (design §8), as written; unset means "as the parent".
 /// They apply to the object and everything below it, the nearest setting winning.
 struct ObjectFlags {
   std::optional<bool> casts_shadows;     // false: invisible to shadow rays
@@ -57,7 +57,7 @@ struct ObjectDescription {
   ObjectKind kind = ObjectKind::Pure;
   SourceLoc loc;  // where "Object" was written
   ObjectFlags flags;
-  // Placement (SPEC §8), as written: applied to everything below, after the transforms of the
+  // Placement (design §8), as written: applied to everything below, after the transforms of the
   // objects inside and before those of the objects around it.
   std::vector<Transform> transforms;
   // A copy of an earlier object (`Copy "name"`): its kind, contents and flags, placed by this

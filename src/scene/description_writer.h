@@ -1,4 +1,4 @@
-// Writing a scene back as a description file (SPEC §2): what rad-gen, rad-tessellate and
+// Writing a scene back as a description file (design §2): what rad-gen, rad-tessellate and
 // rad convert write.
 #pragma once
 

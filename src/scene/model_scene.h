@@ -1,4 +1,4 @@
-// A model file as a scene: its groups and materials become the hierarchy of SPEC §3.
+// A model file as a scene: its groups and materials become the hierarchy of design §3.
 #pragma once
 
 #include <string>

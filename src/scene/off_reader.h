@@ -1,4 +1,4 @@
-// Reader for Geomview OFF polygon files (the `File` geometry of SPEC §2).
+// Reader for Geomview OFF polygon files (the `File` geometry of design §2).
 #pragma once
 
 #include <array>

@@ -1,4 +1,4 @@
-// Recursive-descent parser for the description grammar of SPEC §2, one function per rule.
+// Recursive-descent parser for the description grammar of design §2, one function per rule.
 #include "scene/parser.h"
 
 #include <fmt/format.h>
@@ -170,7 +170,7 @@ class Parser {
       }
       k = scene_.objects[size_t(copy_of)].kind;
     } else if (is_word(kind, "Model")) {
-      // Model "file": the whole model, its groups and materials, as an Assembly (SPEC §8).
+      // Model "file": the whole model, its groups and materials, as an Assembly (design §8).
       model_file = tokens_.next();
       if ((model_file.kind != TokenKind::Word && model_file.kind != TokenKind::String) ||
           model_file.text.empty()) {

@@ -1,4 +1,4 @@
-// Parser for the scene description format (SPEC §2), with Geomview OFF geometry files.
+// Parser for the scene description format (design §2), with Geomview OFF geometry files.
 #pragma once
 
 #include <string>

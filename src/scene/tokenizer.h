@@ -1,4 +1,4 @@
-// Tokens of the scene description format (SPEC §2) and the C-like number syntax it shares
+// Tokens of the scene description format (design §2) and the C-like number syntax it shares
 // with OFF files.
 #pragma once
 

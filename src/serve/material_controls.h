@@ -1,5 +1,5 @@
 // What the page edits for a Pure: colour, reflectivity and emission, as the description writes
-// them (SPEC §2: reflectance = Reflectivity x Color, emission = Emission x Color).
+// them (design §2: reflectance = Reflectivity x Color, emission = Emission x Color).
 #pragma once
 
 #include <optional>

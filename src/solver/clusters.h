@@ -1,4 +1,4 @@
-// Shooting patches (SPEC §10): groups of a Pure's triangles that shoot as one source, so the
+// Shooting patches (design §10): groups of a Pure's triangles that shoot as one source, so the
 // number of shots follows the surfaces and the lighting, not the tessellation.
 #pragma once
 

@@ -116,7 +116,7 @@ int receiver_side(const ShotSource& src, const Vec3& x) {
 namespace {
 
 // The exact unoccluded form factor of the source at x with normal n (the analytic method of
-// SPEC §4), or nothing where it does not apply and the samples' EQ 7 sums stand: it needs x in
+// design §4), or nothing where it does not apply and the samples' EQ 7 sums stand: it needs x in
 // front of every triangle of the source and, for a curved source cut by x's tangent plane, every
 // corner off its outline in front of that plane too (else the plane may cut a loop that meets no
 // outline edge, inside a dome, which the outline's clipping cannot see). Far away, with the source

@@ -1,4 +1,4 @@
-// What one receiving point gathers from one shooting source (SPEC §4, EQ 7).
+// What one receiving point gathers from one shooting source (design §4, EQ 7).
 #pragma once
 
 #include <cstdint>

@@ -19,7 +19,7 @@ enum class FormFactorMethod : uint8_t {
 
 /// Which new midpoints get the current shot computed rather than interpolated.
 enum class MidpointRule : uint8_t {
-  /// The original's rule (SPEC §5): only midpoints of edges whose ends differ by more than the
+  /// The original's rule (design §5): only midpoints of edges whose ends differ by more than the
   /// limit; the others get the mean of their ends, which keeps an unsplit neighbour's edge
   /// free of discontinuity when T-vertices are drawn without being split.
   Interpolate,

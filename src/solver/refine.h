@@ -1,4 +1,4 @@
-// Adaptive subdivision (SPEC §5): after a shot, and after an edit.
+// Adaptive subdivision (design §5): after a shot, and after an edit.
 #pragma once
 
 #include <cstdint>

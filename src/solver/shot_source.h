@@ -125,7 +125,7 @@ int sample_grid_for(const SolverState& s, float extent);
 
 /// Freezes cluster c as the source of the next shot. Its triangles are cut into fine points of
 /// about equal area (regular barycentric grids, about 16 n in all), each with the unshot
-/// radiosity interpolated on its own triangle's subdivision (SPEC §5); the points are grouped
+/// radiosity interpolated on its own triangle's subdivision (design §5); the points are grouped
 /// into n compact strata of equal area by median splits, and each stratum's sample sits at its
 /// centroid with its area, mean normal and mean unshot radiosity (the shadow ray ends at the
 /// stratum's point nearest the centroid of its unshot power, which lies on the surface).

@@ -1,5 +1,5 @@
 // The visibility interface the solver calls: batch occlusion of shadow segments, chosen at
-// run time among the Embree BVH, the in-house voxel grid (SPEC §6) and brute force.
+// run time among the Embree BVH, the in-house voxel grid (design §6) and brute force.
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// The in-house voxel-grid visibility backend of SPEC §6: per-object grids and the object walk.
+// The in-house voxel-grid visibility backend of design §6: per-object grids and the object walk.
 #pragma once
 
 #include <memory>

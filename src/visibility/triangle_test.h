@@ -1,4 +1,4 @@
-// Precomputed triangle records and the segment–triangle test of SPEC §6 (barycentrics via s_a,
+// Precomputed triangle records and the segment–triangle test of design §6 (barycentrics via s_a,
 // s_b).
 #pragma once
 
@@ -26,7 +26,7 @@ struct SegmentHitRecord {
   uint32_t triangle = ~0u;
 };
 
-/// One triangle a, b, c prepared for the SPEC §6 test, 64 bytes (one cache line):
+/// One triangle a, b, c prepared for the design §6 test, 64 bytes (one cache line):
 /// e_a = a − c, e_b = b − c, n = e_a × e_b, plane n·p = plane_offset,
 /// s_a = e_b × n / |n|², s_b = n × e_a / |n|² (= e_a × (e_b × e_a) / |n|²), so that any p on the
 /// plane is c + α e_a + β e_b with α = (p − c)·s_a, β = (p − c)·s_b. A degenerate triangle
@@ -60,7 +60,7 @@ inline TriangleRecord make_triangle_record(const std::array<Vec3, 3>& t) {
 }
 
 /// Records for every triangle of the hierarchy, same indices. A triangle whose object casts no
-/// shadows (SPEC §8) gets the all-zero record, which no segment hits: every backend asks this
+/// shadows (design §8) gets the all-zero record, which no segment hits: every backend asks this
 /// one test, so all of them see through it alike.
 inline std::vector<TriangleRecord> make_triangle_records(const Hierarchy& h) {
   const Triangles& triangles = h.triangles;
@@ -95,7 +95,7 @@ struct alignas(32) TrianglePacket {
   }
 };
 
-/// The SPEC §6 test of one segment against R = TriangleRecord (returns bool) or TrianglePacket
+/// The design §6 test of one segment against R = TriangleRecord (returns bool) or TrianglePacket
 /// (returns the mask of lanes hit). One expression for both, evaluated in the same order, so a
 /// lane of the packet test answers exactly what the one-triangle test does: the visibility
 /// library is compiled without floating-point contraction (-ffp-contract=off), which would
@@ -128,7 +128,7 @@ template <class R>
   }
 }
 
-/// Ray–triangle intersection by barycentric coordinates (SPEC §6; the plane/barycentric form of
+/// Ray–triangle intersection by barycentric coordinates (design §6; the plane/barycentric form of
 /// Snyder & Barr, "Ray Tracing Complex Models Containing Surface Tessellations", SIGGRAPH 1987):
 /// true if origin + t·direction meets the triangle for some t in the open interval (0, 1), with
 /// the point inside or on the edges (α ≥ 0, β ≥ 0, α + β ≤ 1). A segment parallel to the plane

@@ -39,7 +39,7 @@ TriangleFrame make_triangle_frame(const std::array<Vec3, 3>& corners) {
   return t;
 }
 
-// Interval arithmetic (Moore, "Interval Analysis", 1966) applied to the SPEC §6 barycentric
+// Interval arithmetic (Moore, "Interval Analysis", 1966) applied to the design §6 barycentric
 // expressions, as the original program did.
 bool triangle_may_overlap_box(const TriangleFrame& t, const DVec3& lo, const DVec3& hi) {
   if (t.degenerate) return false;

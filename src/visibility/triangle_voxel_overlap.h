@@ -1,4 +1,4 @@
-// Triangle–voxel overlap by interval arithmetic on the SPEC §6 expressions (grid construction).
+// Triangle–voxel overlap by interval arithmetic on the design §6 expressions (grid construction).
 #pragma once
 
 #include <array>
@@ -19,7 +19,7 @@ struct TriangleFrame {
 
 TriangleFrame make_triangle_frame(const std::array<Vec3, 3>& corners);
 
-/// SPEC §6 overlap by interval arithmetic: the box [lo, hi] is a point whose coordinates are
+/// design §6 overlap by interval arithmetic: the box [lo, hi] is a point whose coordinates are
 /// intervals; it may overlap the triangle when the interval of n·(x − c) contains 0 and the
 /// intervals of α = (x − c)·s_a, β = (x − c)·s_b and α + β each meet [0, 1]. Each expression is
 /// linear with every coordinate appearing once, so each interval is the exact range over the box;

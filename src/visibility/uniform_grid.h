@@ -1,4 +1,4 @@
-// One uniform voxel grid over a range of triangles (SPEC §6): resolution, build, flat cells.
+// One uniform voxel grid over a range of triangles (design §6): resolution, build, flat cells.
 #pragma once
 
 #include <array>

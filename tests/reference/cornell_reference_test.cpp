@@ -1,6 +1,6 @@
 // rad's Cornell box, solved with the default options and the Embree backend, against the
-// independent path-traced reference in scenes/reference/cornell_box.csv (issue 4, "Done
-// when": mean error <= 1% of the mean radiosity, displayed radiosity Gouraud-interpolated).
+// independent path-traced reference in scenes/reference/cornell_box.csv: mean error <= 1% of
+// the mean radiosity, displayed radiosity Gouraud-interpolated.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -44,14 +44,14 @@ TEST(CornellReference, DefaultSolveWithinOnePercentMeanOfPathTracedReference) {
   write_point_comparisons(out, r);
   std::printf("per-point values: %s\n", dump.c_str());
   EXPECT_EQ(r.outside, 0u);
-  EXPECT_LE(r.all.mean_error, 0.01) << "issue 4 target: mean error <= 1% of the mean radiosity";
+  EXPECT_LE(r.all.mean_error, 0.01) << "target: mean error <= 1% of the mean radiosity";
   // The same bound without the light, whose exact emission dominates the mean: measured 1.26%
   // with 16 samples on every source, 0.79% with big sources sampled as finely as the mesh.
   EXPECT_LE(r.reflecting.mean_error, 0.01) << "reflecting surfaces alone";
 }
 
 // The same box with every triangle cut k x k (the same surfaces, so the same reference): the
-// answer must not depend on the tessellation (issue 12: mean <= 1%, |bias| <= 0.5% of the mean
+// answer must not depend on the tessellation (mean <= 1%, |bias| <= 0.5% of the mean
 // radiosity on the reflecting surfaces, stored radiosity). k = 4 runs in seconds; tools/bench
 // takes k up to 24.
 TEST(CornellReference, TessellatedBoxKeepsTheAnswer) {

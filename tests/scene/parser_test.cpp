@@ -1,4 +1,4 @@
-// The description grammar of SPEC §2: every construct, materials, locations, and every error
+// The description grammar of design §2: every construct, materials, locations, and every error
 // with its exact line and column.
 #include "scene/parser.h"
 

@@ -125,7 +125,7 @@ TEST_P(AnalyticScenes, VertexInFullUmbraGetsZero) {
                     {0.2f, -0.2f, 2}, Vec3(0), Vec3(10));
   const auto r = solve_scene(d, GetParam());
   // Polygon corners are computed exactly: 0. Midpoints added by subdivision on edges within the
-  // limit are interpolated from their ends (SPEC §5), so they may hold up to half the limit.
+  // limit are interpolated from their ends (design §5), so they may hold up to half the limit.
   const float limit = r->s.options.subdivision_threshold * r->s.radiosity_scale;
   int umbra_corners = 0, lit = 0;
   for (size_t p = 0; p < r->h.triangles.size(); ++p) {
@@ -206,7 +206,7 @@ TEST(FurnaceWithABlock, KeepsEOverOneMinusRhoEverywhereVisible) {
   }
   std::printf("furnace with a block: %zu vertices, mean error %+.3f%%, worst %.3f%%\n", n,
               100 * sum / double(n), 100 * worst);
-  // The bounds every analytic scene here is held to (issue 4: mean 0.5%, worst 2%); the furnace
+  // The bounds every analytic scene here is held to (mean 0.5%, worst 2%); the furnace
   // without a block meets the tighter 0.5% everywhere, but the block's base edges are contact
   // lines where a vertex's limit depends on the side it is approached from.
   EXPECT_LE(std::abs(sum / double(n)), 0.005);

@@ -1,4 +1,4 @@
-// The original's per-object flags (SPEC §8) in the solver, on every backend: an object that
+// The original's per-object flags (design §8) in the solver, on every backend: an object that
 // casts no shadows is invisible to shadow rays, one that receives none takes every visibility
 // term as 1, and an object with a Lights list lights only itself and what it lists.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Subdivision rules of SPEC §5 as the solver applies them after a shot.
+// Subdivision rules of design §5 as the solver applies them after a shot.
 #include "solver/refine.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Segment–triangle test of SPEC §6: inside, edges, vertices, open ends, grazing, degenerate.
+// Segment–triangle test of design §6: inside, edges, vertices, open ends, grazing, degenerate.
 #include "visibility/triangle_test.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Triangle–voxel overlap (interval arithmetic, SPEC §6) against an exact separating-axis test.
+// Triangle–voxel overlap (interval arithmetic, design §6) against an exact separating-axis test.
 #include "visibility/triangle_voxel_overlap.h"
 
 #include <gtest/gtest.h>

@@ -412,7 +412,7 @@ SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess
   const float w = 5.0f, h = 3.0f, door = 1.0f, door_h = 2.1f;
   const Vec3 X(1, 0, 0), Y(0, 1, 0), Z(0, 0, 1);
   int serial = 0;
-  // building → one Assembly per row of rooms → rooms: Assemblies group what is near (SPEC §3),
+  // building → one Assembly per row of rooms → rooms: Assemblies group what is near (design §3),
   // so a ray tests about nx + nz boxes, not nx · nz.
   std::vector<int32_t> rows;
   for (int i = 0; i < nx; ++i) {

@@ -26,7 +26,7 @@ SceneKind parse_scene_kind(std::string_view name);
 
 /// A scene of the given family with about `triangles` triangles (within a factor ~1.5; at least
 /// a few dozen), the same for the same (kind, triangles, seed) on every platform. A building's
-/// rooms get Lights lists (SPEC §8) naming the rooms within `lights_reach` rooms (Chebyshev
+/// rooms get Lights lists (design §8) naming the rooms within `lights_reach` rooms (Chebyshev
 /// distance) when it is 0 or more.
 SceneDescription generate_scene(SceneKind kind, uint64_t triangles, uint64_t seed,
                                 int lights_reach = -1);
@@ -56,7 +56,7 @@ SceneDescription make_teapot_in_stadium(int stacks);
 SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess, uint64_t seed,
                                int lights_reach = -1);
 
-/// A 5 × 2.8 × 4 m room furnished as real models are made (SPEC §10's curved meshes): a sofa
+/// A 5 × 2.8 × 4 m room furnished as real models are made (design §10's curved meshes): a sofa
 /// and an armchair of rounded boxes, a coffee table on cylinder legs with a torus, spheres and a
 /// vase on it, a bookshelf of boxes, a plant of thin two-sided leaves, a floor lamp whose globe
 /// emits (a curved emitter) and a ceiling light panel. Every curved part's tessellation grows
