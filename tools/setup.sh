@@ -87,7 +87,7 @@ rad_tsan_deps() {
   echo "$prefix"
 }
 
-rad_build() {
+rad_build() {  # [TARGET...]: those only (default: everything, tests and benchmarks included)
   rad_install_missing "${rad_packages[@]}" || return
   local extra=()
   if [[ "$RAD_SANITIZE" == *thread* ]]; then
@@ -101,7 +101,7 @@ rad_build() {
   cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DRAD_SANITIZE="$RAD_SANITIZE" ${RAD_SANITIZE:+-DRAD_BUILD_BENCH=OFF} "${extra[@]}" >/dev/null ||
     return
-  cmake --build "$BUILD" -j "$(nproc)"
+  cmake --build "$BUILD" -j "$(nproc)" ${1:+--target "$@"}
 }
 
 # Node tools the tests use (the Khronos glTF validator), installed under build/npm. Not fatal:
