@@ -1,5 +1,7 @@
 #include "export/camera.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -31,7 +33,7 @@ float parse_float(std::string_view s, std::string_view spec) {
 
 /// Area of the triangles lying on the plane axis = `at` (within eps), projected onto it.
 float area_on_plane(std::span<const Vec3> p, std::span<const uint32_t> idx, int axis, float at,
-                    float eps) {
+                    float eps, float out_sign) {
   float area = 0.0f;
   for (size_t f = 0; f + 2 < idx.size(); f += 3) {
     const Vec3 &a = p[idx[f]], &b = p[idx[f + 1]], &c = p[idx[f + 2]];
@@ -39,7 +41,10 @@ float area_on_plane(std::span<const Vec3> p, std::span<const uint32_t> idx, int 
         std::abs(c[axis] - at) > eps) {
       continue;
     }
-    area += 0.5f * std::abs(glm::cross(b - a, c - a)[axis]);
+    // Only faces towards the inside close the side: a closed object's own outer faces lie on
+    // its box too, and from outside they are what a viewer should see.
+    const float normal = glm::cross(b - a, c - a)[axis];
+    if (normal * out_sign < 0.0f) area += 0.5f * std::abs(normal);
   }
   return area;
 }
@@ -81,6 +86,11 @@ CameraFrame camera_frame(const Camera& c, float aspect) {
   return f;
 }
 
+std::string camera_spec(const Camera& c) {
+  return fmt::format("{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.4g}", c.eye.x, c.eye.y, c.eye.z,
+                     c.target.x, c.target.y, c.target.z, c.fov_y_deg);
+}
+
 Camera default_camera(std::span<const Vec3> positions, std::span<const uint32_t> indices,
                       float aspect) {
   Aabb box;
@@ -103,7 +113,7 @@ Camera default_camera(std::span<const Vec3> positions, std::span<const uint32_t>
     const float face = ext[u] * ext.y;
     const float at = s.sign < 0 ? box.lo[s.axis] : box.hi[s.axis];
     const float cover =
-        face > 0.0f ? area_on_plane(positions, indices, s.axis, at, eps) / face : 0.0f;
+        face > 0.0f ? area_on_plane(positions, indices, s.axis, at, eps, s.sign) / face : 0.0f;
     if (cover < best_coverage - 1e-3f) best = s, best_coverage = cover;
   }
 

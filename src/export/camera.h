@@ -2,6 +2,7 @@
 #pragma once
 
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "core/math.h"
@@ -36,11 +37,15 @@ CameraFrame camera_frame(const Camera& c, float aspect);
 
 /// Frames the bounding box of `positions` (faces: 3 indices each) from its most open side: of the
 /// four sides facing ±x and ±z, the one whose face is least covered by triangles lying on it
-/// (ties prefer -z, then +z, -x, +x). When that side is open the eye is outside the box looking
-/// at its centre, far enough for the side's face to fill the view (the Cornell box gives its
-/// published view); when even that side is closed (a room), the eye is just inside it and the
+/// that face into the box (a closed object's outer faces leave its sides open: it is seen from
+/// outside; ties prefer -z, then +z, -x, +x). When that side is open the eye is outside the box
+/// looking at its centre, far enough for the side's face to fill the view (the Cornell box gives
+/// its published view); when even that side is closed (a room), the eye is just inside it and the
 /// field of view widens to show the opposite wall. Up is +y.
 Camera default_camera(std::span<const Vec3> positions, std::span<const uint32_t> indices,
                       float aspect);
+
+/// The camera in the syntax --camera takes: "ex,ey,ez,tx,ty,tz,fov".
+std::string camera_spec(const Camera& c);
 
 }  // namespace rad

@@ -236,9 +236,7 @@ struct SolverState {
 
 /// How vertices inside solids are probed (buried_vertices.h): a vertex moves at most the smallest
 /// elements' size, as far as the last elements that reach out of a solid extend.
-inline BuriedProbe buried_probe(const SolverState& s) {
-  return {s.shadow_offset, s.min_size};
-}
+inline BuriedProbe buried_probe(const SolverState& s) { return {s.shadow_offset, s.min_size}; }
 
 /// The diameter of a sphere that holds every corner, about the smallest: what the default
 /// element sizes scale with. Unlike the bounding box's diagonal it does not change when the

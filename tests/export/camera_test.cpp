@@ -101,6 +101,42 @@ TEST(Camera, DefaultForAClosedRoomStandsInsideIt) {
   EXPECT_GT(c.fov_y_deg, 50.0f);         // wide enough to show all of it
 }
 
+// A closed object (a cube whose faces point outwards, as a model's do) is seen from outside:
+// its own outer faces do not close a side, and from inside the camera would see only their
+// backs.
+TEST(Camera, DefaultForAClosedObjectStandsOutsideIt) {
+  Soup s;
+  auto quad = [&](Vec3 a, Vec3 b, Vec3 c, Vec3 d) {  // front by the right-hand rule
+    const uint32_t n = uint32_t(s.positions.size());
+    s.positions.insert(s.positions.end(), {a, b, c, d});
+    s.indices.insert(s.indices.end(), {n, n + 1, n + 2, n, n + 2, n + 3});
+  };
+  quad({0, 0, 0}, {2, 0, 0}, {2, 0, 2}, {0, 0, 2});  // y = 0, normal -y
+  quad({0, 1, 0}, {0, 1, 2}, {2, 1, 2}, {2, 1, 0});  // y = 1, +y
+  quad({0, 0, 0}, {0, 0, 2}, {0, 1, 2}, {0, 1, 0});  // x = 0, -x
+  quad({2, 0, 0}, {2, 1, 0}, {2, 1, 2}, {2, 0, 2});  // x = 2, +x
+  quad({0, 0, 0}, {0, 1, 0}, {2, 1, 0}, {2, 0, 0});  // z = 0, -z
+  quad({0, 0, 2}, {2, 0, 2}, {2, 1, 2}, {0, 1, 2});  // z = 2, +z
+  for (size_t f = 0; f < s.indices.size();
+       f += 3) {  // each face's normal points away from (1,.5,1)
+    const Vec3 a = s.positions[s.indices[f]], b = s.positions[s.indices[f + 1]],
+               c = s.positions[s.indices[f + 2]];
+    ASSERT_GT(glm::dot(glm::cross(b - a, c - a), a - Vec3(1, 0.5f, 1)), 0.0f);
+  }
+  const Camera c = default_camera(s.positions, s.indices, 1.0f);
+  EXPECT_LT(c.eye.z, 0.0f);  // outside, before the -z face
+  EXPECT_NEAR(c.target.z, 0.0f, 1e-6f);
+  EXPECT_EQ(c.fov_y_deg, kDefaultFovDeg);
+}
+
+TEST(Camera, SpecIsWhatParseCameraReads) {
+  const Camera c = parse_camera("1,2,3,4,5.5,-6,45");
+  const Camera d = parse_camera(camera_spec(c));
+  EXPECT_EQ(d.eye, c.eye);
+  EXPECT_EQ(d.target, c.target);
+  EXPECT_EQ(d.fov_y_deg, c.fov_y_deg);
+}
+
 TEST(Camera, DefaultPrefersTheOpenSide) {
   // A box open toward +x only: floor, ceiling and the -x, -z, +z walls.
   Soup s;
