@@ -25,6 +25,12 @@ struct Aabb {
   Vec3 extent() const { return empty() ? Vec3(0.0f) : hi - lo; }
   Vec3 center() const { return (lo + hi) * 0.5f; }
   float diagonal() const { return glm::length(extent()); }
+  /// The axis along which the box is widest (0, 1, 2 for x, y, z), the lowest of equals: where
+  /// the median splits of clusters, strata and trees cut.
+  int widest_axis() const {
+    const Vec3 e = extent();
+    return e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
+  }
   /// The larger of the diagonal and the largest coordinate magnitude: float rounding of the
   /// positions inside the box scales with it (about 1.2e-7 of it), not with the diagonal alone.
   float magnitude() const {

@@ -107,9 +107,7 @@ struct Regrouper {
       return group(ObjectKind::Composite, std::move(parts));
     }
     // Split at the median along the widest spread of centres (ties by index: deterministic).
-    const Vec3 spread = centres.extent();
-    const int axis =
-        spread.x >= spread.y && spread.x >= spread.z ? 0 : (spread.y >= spread.z ? 1 : 2);
+    const int axis = centres.widest_axis();
     const size_t half = items.size() / 2;
     std::nth_element(items.begin(), items.begin() + std::ptrdiff_t(half), items.end(),
                      [&](int32_t a, int32_t b) {

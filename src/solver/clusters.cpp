@@ -37,8 +37,7 @@ void split_region(const Triangles& t, std::vector<uint32_t> tris, double max_are
     parts.push_back(std::move(tris));
     return;
   }
-  const Vec3 e = box.extent();
-  const int axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
+  const int axis = box.widest_axis();
   std::sort(tris.begin(), tris.end(), [&](uint32_t a, uint32_t b) {
     const float ca = t.centroid(a)[axis], cb = t.centroid(b)[axis];
     return ca < cb || (ca == cb && a < b);

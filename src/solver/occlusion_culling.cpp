@@ -38,8 +38,7 @@ uint32_t build_node(ReceiverTree& tree, const Hierarchy& h, const std::vector<Ve
   tree.first.push_back(first), tree.count.push_back(count), tree.right.push_back(0);
   tree.cullable.push_back(cullable);
   if (count <= kLeafTriangles) return node;
-  const Vec3 e = centres.extent();
-  const int axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
+  const int axis = centres.widest_axis();
   const uint32_t half = count / 2;
   auto begin = tree.order.begin() + first;
   // Ties broken by index: the same scene gives the same tree.

@@ -38,8 +38,7 @@ void stratify(std::vector<FinePoint>& points, size_t lo, size_t hi, uint32_t gro
   double total = 0.0;
   for (size_t i = lo; i < hi; ++i)
     box.extend(points[order[i]].position), total += points[order[i]].area;
-  const Vec3 e = box.extent();
-  const int axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
+  const int axis = box.widest_axis();
   std::sort(order.begin() + long(lo), order.begin() + long(hi), [&](uint32_t a, uint32_t b) {
     const float pa = points[a].position[axis], pb = points[b].position[axis];
     return pa < pb || (pa == pb && a < b);
