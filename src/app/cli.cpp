@@ -466,6 +466,8 @@ void define_solve(ModeParser& p) {
       r.job.input.model.require_emission = false;
       r.job.input.model.warn_unlit = true;
     }
+    // --max-shots 0 asks for the unlit scene: a model without lamps is what it writes.
+    if (r.run.solver.max_shots == 0) r.job.input.model.require_emission = false;
     if (!cross_check.empty()) {
       if (check) throw CLI::ValidationError("--cross-check", "solves; --check does not");
       try {

@@ -698,6 +698,18 @@ TEST(CommandLine, ASceneWithoutLightIsRefusedUnlessOnlyTheEmissionIsAsked) {
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(read_file(ply).rfind("ply\n", 0), 0u);
   EXPECT_EQ(run_rad("--check " + des).code, 0) << "--check only reads it";
+  // A model without lamps likewise: refused with the --emit hint, written unlit with
+  // --max-shots 0, summarised by --check.
+  const std::string obj = (dir / "dark.obj").string();
+  std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  r = run_rad(obj + " " + ply);
+  EXPECT_EQ(r.code, rad::kExitInputError);
+  EXPECT_NE(r.err.find("--emit"), std::string::npos) << r.err;
+  fs::remove(ply);
+  r = run_rad("-q --max-shots 0 " + obj + " " + ply);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(ply));
+  EXPECT_EQ(run_rad("--check " + obj).code, 0);
   fs::remove_all(dir);
 }
 
