@@ -11,6 +11,7 @@
 #include "hierarchy/auto_hierarchy.h"
 #include "hierarchy/hierarchy.h"
 #include "run/prepared_solve.h"
+#include "run/scene_checks.h"
 #include "scene/scene_file.h"
 #include "solver/solver.h"
 #include "visibility/agreement.h"
@@ -117,7 +118,9 @@ class ComparingBackend final : public VisibilityBackend {
 int run_cross_check(const CommandLine& cmd) {
   const BackendKind first = cmd.run.backend, second = *cmd.cross_check;
   const SceneInput& in = cmd.job.input;
+  check_scene_input(in);
   const Hierarchy h = load_hierarchy(in.path, in.model, in.hierarchy);
+  require_light(h, in, cmd.run.solver);
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                             size_t(thread_count(cmd.run.threads)));
   std::printf("Cross-check of %s: %s against %s (%zu triangles)\n", in.path.c_str(),
