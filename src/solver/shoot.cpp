@@ -119,10 +119,7 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
         const Vec3 at = s.buried.gather_point(p, v, mesh.positions[v]);
         const Vec3 dh =
             gather_from_source(at, n, centroid, src, vis, own, sc, kept ? &rays : nullptr);
-        x.irradiance += dh;
-        if (at == mesh.positions[v]) x.unshot += rho * dh;  // a buried vertex shoots nothing
-        x.shot = dh;
-        if (major) x.major += dh;
+        x.receive(dh, rho, major, at == mesh.positions[v]);
       }
     }
   });
@@ -134,11 +131,7 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
     for (const VertexCopy& c : shared.copies[p]) {
       if (!received[c.from_polygon]) continue;
       const Vec3 dh = s.vertex_states[c.from_polygon][c.from_vertex].shot;
-      VertexState& x = vs[c.vertex];
-      x.irradiance += dh;
-      if (!s.buried.is_moved(c.from_polygon, c.from_vertex)) x.unshot += rho * dh;
-      x.shot = dh;
-      if (major) x.major += dh;
+      vs[c.vertex].receive(dh, rho, major, !s.buried.is_moved(c.from_polygon, c.from_vertex));
     }
   });
 }

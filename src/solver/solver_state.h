@@ -49,6 +49,16 @@ struct VertexState {
   Vec3 unshot{0.0f};      // radiosity received but not yet shot
   Vec3 shot{0.0f};        // H gathered during the current shot only (for subdivision)
   Vec3 major{0.0f};       // part of H gathered from the solver's major shots (see solver)
+
+  /// Takes a shot's gain dh (H before the reflectance rho): into H, the current shot and, for a
+  /// major shot, the major part; into the light to shoot only when the vertex `shoots` (not one
+  /// inside a solid, buried_vertices.h).
+  void receive(const Vec3& dh, const Vec3& rho, bool major_shot, bool shoots) {
+    irradiance += dh;
+    if (shoots) unshot += rho * dh;
+    shot = dh;
+    if (major_shot) major += dh;
+  }
 };
 
 /// A polygon's unshot energy: its unshot radiosity integrated over its leaf elements. `sum` is
