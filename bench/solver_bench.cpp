@@ -113,20 +113,20 @@ struct StateBytes {
 
 StateBytes solver_state_bytes(const SolverState& s) {
   StateBytes b;
-  b.polygon_structs = heap_bytes(s.mesh.polygons) + heap_bytes(s.vertex_states);
-  for (size_t q = 0; q < s.mesh.polygons.size(); ++q) {
-    const PolygonMesh& p = s.mesh.polygons[q];
-    b.vertex_arrays += heap_bytes(p.positions) + heap_bytes(s.vertex_states[q]);
+  b.polygon_structs = heap_bytes(s.solution.mesh.polygons) + heap_bytes(s.solution.vertex_states);
+  for (size_t q = 0; q < s.solution.mesh.polygons.size(); ++q) {
+    const PolygonMesh& p = s.solution.mesh.polygons[q];
+    b.vertex_arrays += heap_bytes(p.positions) + heap_bytes(s.solution.vertex_states[q]);
     b.elements += heap_bytes(p.elements);
     if (p.midpoints.size() > 0) {  // allocated at the first split: the map, buckets, nodes
       const auto& m = p.midpoints.entries();
       b.midpoints += sizeof(m) + 8 + m.bucket_count() * 8 + 8 + m.size() * 32;
     }
   }
-  b.other = sizeof(SolverState) + heap_bytes(s.materials) + heap_bytes(s.unshot_energy) +
-            heap_bytes(s.history);
-  for (const auto& g : s.barycentric_grids) b.other += heap_bytes(g);
-  const Clusters& k = s.clusters;
+  b.other = sizeof(SolverState) + heap_bytes(s.solution.materials) +
+            heap_bytes(s.energy.unshot_energy) + heap_bytes(s.shots.history);
+  for (const auto& g : s.scene.barycentric_grids) b.other += heap_bytes(g);
+  const Clusters& k = s.scene.clusters;
   b.other += heap_bytes(k.first) + heap_bytes(k.polygons) + heap_bytes(k.cluster_of) +
              heap_bytes(k.edge_first) + heap_bytes(k.edge_a) + heap_bytes(k.edge_b) +
              k.size() * (2 * sizeof(Vec3) + 7 * sizeof(float) + sizeof(Aabb) + 1);
@@ -140,7 +140,7 @@ struct StateSize {
   size_t vertices = 0;
 };
 StateSize state_size(const SolverState& s) {
-  return {solver_state_bytes(s), count_vertices(s.mesh)};
+  return {solver_state_bytes(s), count_vertices(s.solution.mesh)};
 }
 
 /// Per-vertex state bytes as counters: the total and its parts.
@@ -176,27 +176,28 @@ std::unique_ptr<ShotCase> prepare_shot(SolverState s, const VisibilityBackend& v
   auto c = std::make_unique<ShotCase>();
   const std::optional<Shooter> shooter = choose_shooter(s);
   if (!shooter) return nullptr;
-  c->index = s.shots + 1;
+  c->index = s.shots.count + 1;
   c->src = make_shot_source(s, shooter->cluster);
-  const Clusters& k = s.clusters;
+  const Clusters& k = s.scene.clusters;
   const std::span<const uint32_t> own(k.polygons.data() + k.first[size_t(shooter->cluster)],
                                       k.polygon_count(size_t(shooter->cluster)));
   for (uint32_t p : own)
-    for (VertexState& v : s.vertex_states[p]) v.unshot = Vec3(0.0f);
+    for (VertexState& v : s.solution.vertex_states[p]) v.unshot = Vec3(0.0f);
   c->major = s.options.major_shot_fraction > 0.0 &&
-             shooter->energy >= s.options.major_shot_fraction * s.emitted_energy;
-  set_unshot_energies(s, own, std::vector<UnshotEnergy>(own.size()));
-  share_unshot_totals(s);
+             shooter->energy >= s.options.major_shot_fraction * s.energy.emitted_energy;
+  set_unshot_energies(s.energy, s.solution, s.scene.clusters, own,
+                      std::vector<UnshotEnergy>(own.size()));
+  share_unshot_totals(s.energy, s.ownership.ranks);
   c->before = s;
   c->size_before = state_size(s);
   RecordingBackend recorder(vis);
   shoot_to_receivers(s, c->src, recorder, c->major);
-  c->received = s.received;
+  c->received = s.receivers.marked;
   c->after = s;
-  refine_after_shot(s, c->src, vis, c->major, needing_refinement(s, s.receivers));
+  refine_after_shot(s, c->src, vis, c->major, needing_refinement(s, s.receivers.polygons));
   c->size_refined = state_size(s);
   for (size_t p = 0; p < c->received.size(); ++p) {
-    if (c->received[p]) c->receivers += c->after.mesh.polygons[p].vertex_count();
+    if (c->received[p]) c->receivers += c->after.solution.mesh.polygons[p].vertex_count();
   }
   c->batch_start.push_back(0);
   for (const RecordingBackend::Batches& b : recorder.recorded()) {
@@ -234,7 +235,7 @@ struct SceneCase {
     SolverState s = make_solver_state(hierarchy, SolverOptions{});
     if (is_later) {
       const int64_t n = int64_t(env_u64("RAD_BENCH_LATER_SHOT", 10));
-      while (s.shots + 1 < n && step(s, backend(Variant::EmbreePacket))) {
+      while (s.shots.count + 1 < n && step(s, backend(Variant::EmbreePacket))) {
       }
     }
     slot = prepare_shot(std::move(s), backend(Variant::EmbreePacket));
@@ -326,7 +327,7 @@ void bm_refine(benchmark::State& st, const SceneSpec& spec, bool later, int thre
     SolverState s = c.after;
     const auto t0 = std::chrono::steady_clock::now();
     refine_after_shot(s, c.src, vis, c.major,
-                      needing_refinement(s, s.receivers));  // of c.after's receivers
+                      needing_refinement(s, s.receivers.polygons));  // of c.after's receivers
     const auto t1 = std::chrono::steady_clock::now();
     st.SetIterationTime(std::chrono::duration<double>(t1 - t0).count());
     splits += double(s.stats.subdivisions - c.after.stats.subdivisions);
@@ -351,11 +352,11 @@ void bm_cornell_solve(benchmark::State& st, const std::string& path, int threads
     benchmark::DoNotOptimize(solve(s, *vis));
   }
   st.counters["threads"] = threads;
-  st.counters["shots"] = double(s.shots);
+  st.counters["shots"] = double(s.shots.count);
   st.counters["rays"] = double(s.stats.rays.rays);
   st.counters["shoot_seconds"] = s.stats.shoot_seconds;
   st.counters["refine_seconds"] = s.stats.refine_seconds;
-  st.counters["unshot_fraction"] = s.unshot_fraction();
+  st.counters["unshot_fraction"] = s.energy.unshot_fraction();
   state_counters(st, state_size(s));
 }
 

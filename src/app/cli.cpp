@@ -71,9 +71,12 @@ struct SceneReading {
 
 // The solve: RunOptions, for every mode that solves. `time_limit`: whether the mode has an end
 // for it to cut short (rad serve solves until stopped).
+// Every default comes from the struct that owns it (RunOptions, SolverOptions).
 struct Solving {
-  std::string backend = "embree", method = "analytic";
-  int samples = 16, max_samples = 64;
+  std::string backend = to_string(RunOptions{}.backend);
+  std::string method = to_string(SolverOptions{}.method);
+  int samples = SolverOptions{}.sample_grid * SolverOptions{}.sample_grid;
+  int max_samples = SolverOptions{}.max_sample_grid * SolverOptions{}.max_sample_grid;
   size_t kept_rays_mib = SolverOptions{}.kept_rays_bytes >> 20;
 
   void add_to(CLI::App& app, RunOptions& r, bool time_limit) {
@@ -83,20 +86,22 @@ struct Solving {
     app.add_option("--threads", r.threads, "Worker threads (0 = all cores)")->capture_default_str();
     SolverOptions& o = r.solver;
     app.add_flag("!--no-shadows", o.shadows, "No shadow rays: every visibility term is 1");
-    app.add_option(
-        "--min-size", o.min_size,
-        "Smallest element size (the legs of a right triangle of its area), scene units (default: "
-        "scene size / 256, the diameter of a sphere holding it)");
+    app.add_option("--min-size", o.min_size,
+                   fmt::format("Smallest element size (the legs of a right triangle of its "
+                               "area), scene units (default: scene size / {}, the diameter of a "
+                               "sphere holding it)",
+                               SolverOptions::kMinSizeDivisor));
     app.add_option("--max-size", o.max_size,
-                   "Largest element edge of the initial mesh, scene units (default: scene "
-                   "size / 16, at least 2 x --min-size)");
+                   fmt::format("Largest element edge of the initial mesh, scene units (default: "
+                               "scene size / {}, at least 2 x --min-size)",
+                               SolverOptions::kMaxSizeDivisor));
     app.add_option("--samples", samples,
                    "Fewest samples per shooting cluster (a square: 1, 4, 9, 16, ... up to 256)")
         ->capture_default_str();
     app.add_option("--max-samples", max_samples,
                    "Most samples per shooting cluster (a square, up to 256): a big source gets "
                    "more than --samples, as many as bring their spacing within the initial mesh's "
-                   "element size (scene size / 16) or this many; give both to fix the count")
+                   "element size (--max-size) or this many; give both to fix the count")
         ->capture_default_str();
     app.add_option("--form-factor", method,
                    "analytic (the exact unoccluded form factor times the visibility the samples "
@@ -164,7 +169,10 @@ struct Solving {
 // How the solution is shown and rendered: OutputOptions but the file names, for every mode that
 // writes a solution. `images`: whether the mode takes --image (rad batch names its by --formats).
 struct Showing {
-  std::string tonemap = "clamp", camera, size = "800x800";
+  // Every default comes from the struct that owns it (OutputOptions, Camera).
+  std::string tonemap = to_string(OutputOptions{}.tonemap), camera;
+  std::string size =
+      fmt::format("{}x{}", OutputOptions{}.image_width, OutputOptions{}.image_height);
 
   void add_to(CLI::App& app, OutputOptions& o, bool images) {
     app.add_flag("--ascii", o.ascii, "Write text PLY instead of binary");
@@ -185,9 +193,11 @@ struct Showing {
           ->allow_extra_args(false)
           ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     }
-    app.add_option("--camera", camera,
-                   "Image camera eye_x,eye_y,eye_z,target_x,target_y,target_z[,fov_deg], up +y "
-                   "(default: frames the scene from its open side; fov 39.3)");
+    app.add_option(
+        "--camera", camera,
+        fmt::format("Image camera eye_x,eye_y,eye_z,target_x,target_y,target_z[,fov_deg], "
+                    "up +y (default: frames the scene from its open side; fov {})",
+                    kDefaultFovDeg));
     app.add_option("--size", size, "Image size WxH in pixels")->capture_default_str();
   }
   void apply(OutputOptions& o) const {

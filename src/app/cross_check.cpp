@@ -160,29 +160,31 @@ int run_cross_check(const CommandLine& cmd) {
   }
   if (cast.size() > 20) std::printf("    ... and %zu more\n", cast.size() - 20);
   std::printf("  solves: %s %lld shots (%s), %s %lld shots (%s)\n", to_string(first),
-              static_cast<long long>(a.shots), to_string(stop_a), to_string(second),
-              static_cast<long long>(b.shots), to_string(stop_b));
+              static_cast<long long>(a.shots.count), to_string(stop_a), to_string(second),
+              static_cast<long long>(b.shots.count), to_string(stop_b));
   size_t differing = 0, compared = 0;
   int64_t first_differing = -1;
   float largest = 0.0f, worst = 0.0f;
   Vec3 worst_at(0.0f);
-  for (size_t p = 0; p < a.mesh.polygons.size(); ++p) {
-    const PolygonMesh &pa = a.mesh.polygons[p], &pb = b.mesh.polygons[p];
+  for (size_t p = 0; p < a.solution.mesh.polygons.size(); ++p) {
+    const PolygonMesh &pa = a.solution.mesh.polygons[p], &pb = b.solution.mesh.polygons[p];
     for (uint32_t v = 0; v < pa.vertex_count(); ++v)
-      largest = std::max(largest, max_component(a.radiosity(p, v)));
+      largest = std::max(largest, max_component(a.solution.radiosity(p, v)));
     if (pa.vertex_count() != pb.vertex_count() || pa.elements.size() != pb.elements.size()) {
       if (differing++ == 0) first_differing = int64_t(p);
       continue;
     }
     for (uint32_t v = 0; v < pa.vertex_count(); ++v) {
       ++compared;
-      const float d = max_component(glm::abs(a.radiosity(p, v) - b.radiosity(p, v)));
+      const float d =
+          max_component(glm::abs(a.solution.radiosity(p, v) - b.solution.radiosity(p, v)));
       if (d > worst) worst = d, worst_at = pa.positions[v];
     }
   }
   const float relative = largest > 0.0f ? worst / largest : 0.0f;
   std::printf("  vertices: %s %zu, %s %zu; %zu polygons subdivided differently", to_string(first),
-              count_vertices(a.mesh), to_string(second), count_vertices(b.mesh), differing);
+              count_vertices(a.solution.mesh), to_string(second), count_vertices(b.solution.mesh),
+              differing);
   if (first_differing >= 0) {
     const SceneObject& o = h.objects[size_t(h.triangles.object[size_t(first_differing)])];
     std::printf(" (the first: triangle %lld of \"%s\", %s)",
@@ -192,7 +194,7 @@ int run_cross_check(const CommandLine& cmd) {
       "\n  radiosity over the %zu vertices in both: largest difference %.3g of the largest "
       "radiosity, at (%.6g, %.6g, %.6g)\n",
       compared, relative, worst_at.x, worst_at.y, worst_at.z);
-  agree &= differing == 0 && relative <= 1e-5f && a.shots == b.shots;
+  agree &= differing == 0 && relative <= 1e-5f && a.shots.count == b.shots.count;
   std::printf("%s\n", agree ? "agree"
                             : "DISAGREE (rays beyond rounding, subdivision, or radiosity "
                               "beyond 1e-5 of the largest)");

@@ -7,9 +7,9 @@
 namespace rad {
 
 std::shared_ptr<const MeshGeometry> OutputMeshBuilder::update(const SolverState& s, bool* changed) {
-  const std::vector<PolygonMesh>& polys = s.mesh.polygons;
-  const Clusters& clusters = s.clusters;
-  const Triangles& tris = s.hierarchy->triangles;
+  const std::vector<PolygonMesh>& polys = s.solution.mesh.polygons;
+  const Clusters& clusters = s.scene.clusters;
+  const Triangles& tris = s.solution.hierarchy->triangles;
   bool any = !geometry_ || polygons_.size() != polys.size();
   polygons_.resize(polys.size());
   // Elements are only ever added (split into four), so unchanged counts mean unchanged faces;
@@ -84,14 +84,15 @@ void OutputMeshBuilder::values(const SolverState& s, Vec3 ambient, std::vector<V
   for (size_t p = 0; p < polygons_.size(); ++p) {
     const size_t first = radiosity.size();
     const uint32_t n = uint32_t(polygons_[p].vertices);
-    for (uint32_t v = 0; v < n; ++v) radiosity.push_back(s.radiosity(p, v));
+    for (uint32_t v = 0; v < n; ++v) radiosity.push_back(s.solution.radiosity(p, v));
     for (const auto& k : polygons_[p].faces.centroids) {
-      radiosity.push_back((s.radiosity(p, k[0]) + s.radiosity(p, k[1]) + s.radiosity(p, k[2])) /
+      radiosity.push_back((s.solution.radiosity(p, k[0]) + s.solution.radiosity(p, k[1]) +
+                           s.solution.radiosity(p, k[2])) /
                           3.0f);
     }
     for (const VertexRef& r : polygons_[p].faces.seam)
-      radiosity.push_back(s.radiosity(r.polygon, r.vertex));
-    const Material& mat = s.material_of(p);
+      radiosity.push_back(s.solution.radiosity(r.polygon, r.vertex));
+    const Material& mat = s.solution.material_of(p);
     for (size_t v = first; v < radiosity.size(); ++v) {
       display.push_back(radiosity[v] + mat.reflectance * ambient);
     }
@@ -108,7 +109,8 @@ OutputMesh make_output_mesh(const SolverState& s, bool ambient) {
   OutputMesh out;
   bool changed = false;
   out.geometry = builder.update(s, &changed);
-  builder.values(s, ambient ? ambient_radiosity(s) : Vec3(0.0f), out.radiosity, out.display);
+  builder.values(s, ambient ? ambient_radiosity(s.energy, s.solution) : Vec3(0.0f), out.radiosity,
+                 out.display);
   return out;
 }
 

@@ -15,6 +15,18 @@ ToneCurve parse_tone_curve(std::string_view name) {
   throw Error("unknown tone curve '" + std::string(name) + "' (expected clamp, reinhard or aces)");
 }
 
+const char* to_string(ToneCurve curve) {
+  switch (curve) {
+    case ToneCurve::Clamp:
+      return "clamp";
+    case ToneCurve::Reinhard:
+      return "reinhard";
+    case ToneCurve::Aces:
+      return "aces";
+  }
+  return "clamp";
+}
+
 float auto_exposure(std::span<const Vec3> values, float ignore_above, float stops) {
   std::vector<float> v;
   v.reserve(values.size());

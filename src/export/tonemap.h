@@ -12,6 +12,8 @@ namespace rad {
 enum class ToneCurve : uint8_t { Clamp, Reinhard, Aces };
 /// "clamp" | "reinhard" | "aces"; throws rad::Error otherwise.
 ToneCurve parse_tone_curve(std::string_view name);
+/// The name parse_tone_curve takes.
+const char* to_string(ToneCurve curve);
 
 struct ToneMap {
   float scale = 1.0f;  // linear multiplier applied before the curve

@@ -30,9 +30,10 @@ std::string format_statistics(const SolverState& s, double elapsed) {
   o += fmt::format("Shadow-ray answers kept:     {} ({:.2f}% of those needed)\n",
                    s.stats.kept_answers,
                    percent(s.stats.kept_answers, s.stats.kept_answers + r.rays));
-  o += fmt::format("Shots: {}, subdivisions: {}, vertices: {}, elements: {}\n", s.shots,
-                   s.stats.subdivisions, count_vertices(s.mesh), count_leaves(s.mesh));
-  o += fmt::format("Unshot energy left: {:.3g} of emitted\n", s.unshot_fraction());
+  o += fmt::format("Shots: {}, subdivisions: {}, vertices: {}, elements: {}\n", s.shots.count,
+                   s.stats.subdivisions, count_vertices(s.solution.mesh),
+                   count_leaves(s.solution.mesh));
+  o += fmt::format("Unshot energy left: {:.3g} of emitted\n", s.energy.unshot_fraction());
   o += fmt::format("Total elapsed time is {:.2f} seconds\n", elapsed);
   return o;
 }
@@ -51,9 +52,9 @@ void write_stats_json(const std::string& path, const RunOptions& run, const Scen
                       const std::vector<RankReport>& ranks) {
   using nlohmann::json;
   const VisibilityStats& r = s.stats.rays;
-  const Vec3 ambient = ambient_radiosity(s);
+  const Vec3 ambient = ambient_radiosity(s.energy, s.solution);
   json history = json::array();
-  for (const ShotRecord& h : s.history) {
+  for (const ShotRecord& h : s.shots.history) {
     history.push_back({{"shot", h.shot},
                        {"source", h.source},
                        {"seconds", h.seconds},
@@ -65,8 +66,8 @@ void write_stats_json(const std::string& path, const RunOptions& run, const Scen
       {"rad_version", rad_version()},
       {"scene",
        {{"path", job.input.path},
-        {"name", s.hierarchy->scene_name},
-        {"triangles", s.hierarchy->triangles.size()}}},
+        {"name", s.solution.hierarchy->scene_name},
+        {"triangles", s.solution.hierarchy->triangles.size()}}},
       {"backend", to_string(run.backend)},
       {"packets", run.packets},
       {"threads", thread_count(run.threads)},
@@ -75,13 +76,13 @@ void write_stats_json(const std::string& path, const RunOptions& run, const Scen
         {"samples", s.options.sample_grid * s.options.sample_grid},
         {"max_samples", std::max(s.options.sample_grid, s.options.max_sample_grid) *
                             std::max(s.options.sample_grid, s.options.max_sample_grid)},
-        {"clusters", s.clusters.size()},
+        {"clusters", s.scene.clusters.size()},
         {"form_factor", s.options.method == FormFactorMethod::Analytic ? "analytic" : "samples"},
         {"threshold", s.options.subdivision_threshold},
         {"intensity_cut", s.options.intensity_cut},
         {"roulette", s.options.roulette},
         {"converge", s.options.converge},
-        {"min_size", s.min_size}}},
+        {"min_size", s.scene.min_size}}},
       {"stop_reason", to_string(stop)},
       {"partial", stop == StopReason::Interrupted || stop == StopReason::MemoryLimit},
       {"checkpoint",
@@ -95,9 +96,9 @@ void write_stats_json(const std::string& path, const RunOptions& run, const Scen
         {"triangle_tests", r.triangle_tests},
         {"intensity_cuts", s.stats.intensity_cuts},
         {"kept_answers", s.stats.kept_answers},
-        {"kept_answer_bytes", s.kept_rays_bytes}}},
+        {"kept_answer_bytes", s.kept.bytes}}},
       {"solver",
-       {{"shots", s.shots},
+       {{"shots", s.shots.count},
         {"subdivisions", s.stats.subdivisions},
         {"exact_midpoints", s.stats.exact_midpoints},
         {"interpolated_midpoints", s.stats.interpolated_midpoints},
@@ -105,11 +106,11 @@ void write_stats_json(const std::string& path, const RunOptions& run, const Scen
         {"culled", s.stats.culled},
         {"roulette_skipped", s.stats.roulette},
         {"hidden_triangles", s.stats.hidden},
-        {"vertices", count_vertices(s.mesh)},
-        {"elements", count_leaves(s.mesh)},
-        {"emitted_energy", s.emitted_energy},
-        {"absorbed_energy", s.absorbed_energy},
-        {"unshot_fraction", s.unshot_fraction()},
+        {"vertices", count_vertices(s.solution.mesh)},
+        {"elements", count_leaves(s.solution.mesh)},
+        {"emitted_energy", s.energy.emitted_energy},
+        {"absorbed_energy", s.energy.absorbed_energy},
+        {"unshot_fraction", s.energy.unshot_fraction()},
         {"ambient", {ambient.x, ambient.y, ambient.z}},
         {"ambient_displayed", job.outputs.ambient}}},
       {"seconds",

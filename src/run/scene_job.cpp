@@ -86,7 +86,7 @@ std::vector<RankReport> gather_ranks(SolverState& state, Ranks* ranks) {
   std::vector<RankReport> reports = collect(state);
   if (ranks->rank() == 0) {
     state.stats = total_stats(reports);
-    state.absorbed_energy = total_absorbed(reports);
+    state.energy.absorbed_energy = total_absorbed(reports);
   }
   return reports;
 }
@@ -100,7 +100,7 @@ size_t check_memory(SolverState& state, double growth, const SceneJob& job, bool
   const size_t limit = solve_memory_limit(job.max_memory, under_mpi);
   const double now = double(resident_bytes());
   double per_shot = 0.0;
-  for (size_t c = 0; c < state.clusters.size(); ++c)
+  for (size_t c = 0; c < state.scene.clusters.size(); ++c)
     per_shot = std::max(per_shot, shot_log_bytes(state, c));
   if (limit > 0 && now + growth > double(limit)) {
     throw Error(SourceLoc{job.input.path},
@@ -109,7 +109,7 @@ size_t check_memory(SolverState& state, double growth, const SceneJob& job, bool
                             "raise --min-size, or give --max-memory to run anyway (the solve then "
                             "stops at that limit and writes what it has)",
                             format_bytes(now + growth), format_bytes(now), format_bytes(growth),
-                            state.min_size, format_bytes(double(limit)),
+                            state.scene.min_size, format_bytes(double(limit)),
                             job.max_memory > 0 ? " (--max-memory)" : " (90% of this machine's)"));
   }
   limit_kept_answers(state.options, limit);
@@ -137,7 +137,7 @@ class Checkpointer {
     remove_stale_temporaries(path_);
     if (!std::filesystem::exists(path_)) return;
     read_checkpoint(path_, state, fingerprint_);
-    say(fmt::format("Resuming from checkpoint {} ({} shots done)", path_, state.shots));
+    say(fmt::format("Resuming from checkpoint {} ({} shots done)", path_, state.shots.count));
   }
 
   // After each shot: saves when rank 0's clock says it is time (every rank asks it).
@@ -149,10 +149,10 @@ class Checkpointer {
     if (ranks_) {
       // Each rank goes on counting its own share; rank 0 saves the totals.
       const SolverStats own = state.stats;
-      const double absorbed = state.absorbed_energy;
+      const double absorbed = state.energy.absorbed_energy;
       gather_ranks(state, ranks_);
       if (lead()) write_checkpoint(path_, state, fingerprint_), release_foreign(state);
-      state.stats = own, state.absorbed_energy = absorbed;
+      state.stats = own, state.energy.absorbed_energy = absorbed;
     } else {
       write_checkpoint(path_, state, fingerprint_);
     }
@@ -239,7 +239,7 @@ void write_job_outputs(const RunOptions& run, const SceneJob& job, const SolverS
   if (!job.stats_json.empty()) {
     files.write(job.stats_json, [&](const std::string& path) {
       write_stats_json(path, run, job, state, stop, times,
-                       measure_seams(mesh, state.hierarchy->triangles), job_id, reports);
+                       measure_seams(mesh, state.solution.hierarchy->triangles), job_id, reports);
     });
   }
   files.commit();
@@ -295,14 +295,15 @@ SceneJobResult run_scene_job(const RunOptions& run, const SceneJob& job, Ranks* 
   times.solve = since(t);
   t = Clock::now();
   const std::vector<RankReport> reports = checkpoints.finish(state);
-  if (!lead) return {stop, state.shots, 0, state.unshot_fraction(), since(start)};
+  if (!lead) return {stop, state.shots.count, 0, state.energy.unshot_fraction(), since(start)};
   times.gather = ranks ? since(t) : 0.0;
-  progress.finish(fmt::format("{} after {} shots", to_string(stop), state.shots));
+  progress.finish(fmt::format("{} after {} shots", to_string(stop), state.shots.count));
   say_why_stopped(stop, memory_limit, job, say);
 
   write_job_outputs(run, job, state, stop, job_id, reports, start, times, say);
   if (!quiet) std::fputs(format_statistics(state, times.total).c_str(), stdout);
-  return {stop, state.shots, count_vertices(state.mesh), state.unshot_fraction(), times.total};
+  return {stop, state.shots.count, count_vertices(state.solution.mesh),
+          state.energy.unshot_fraction(), times.total};
 }
 
 }  // namespace rad

@@ -231,7 +231,8 @@ void Session::publish() {
   bool geometry_changed = false;
   snap->mesh.geometry = builder_.update(state_, &geometry_changed);
   if (geometry_changed) ++mesh_version_;
-  builder_.values(state_, options_.ambient ? ambient_radiosity(state_) : Vec3(0.0f),
+  builder_.values(state_,
+                  options_.ambient ? ambient_radiosity(state_.energy, state_.solution) : Vec3(0.0f),
                   snap->mesh.radiosity, snap->mesh.display);
   bool stop_requested = false;
   {
@@ -268,8 +269,8 @@ void Session::publish() {
 
   snap->version = ++version_;
   snap->mesh_version = mesh_version_;
-  snap->shots = state_.shots;
-  snap->unshot_fraction = state_.unshot_fraction();
+  snap->shots = state_.shots.count;
+  snap->unshot_fraction = state_.energy.unshot_fraction();
   snap->rays_per_second = rays_per_second_;
   snap->seconds = solve_seconds_;
   snap->build_seconds = publish_seconds_;
@@ -285,7 +286,7 @@ void Session::publish() {
   }
   snap->elements = 0;
   for (int32_t r : h_.roots) snap->elements += elements[size_t(r)];
-  snap->history = thin_history(state_.history, kHistoryPoints);
+  snap->history = thin_history(state_.shots.history, kHistoryPoints);
   snap->notice = notice_;
 
   {

@@ -17,11 +17,11 @@ const char* to_string(SessionStatus s) {
 }
 
 std::vector<int64_t> elements_per_object(const SolverState& s) {
-  const Hierarchy& h = *s.hierarchy;
-  std::vector<int64_t> prefix(s.mesh.polygons.size() + 1, 0);
-  for (size_t p = 0; p < s.mesh.polygons.size(); ++p) {
+  const Hierarchy& h = *s.solution.hierarchy;
+  std::vector<int64_t> prefix(s.solution.mesh.polygons.size() + 1, 0);
+  for (size_t p = 0; p < s.solution.mesh.polygons.size(); ++p) {
     int64_t n = 0;
-    for_each_leaf(s.mesh.polygons[p], [&](uint32_t) { ++n; });
+    for_each_leaf(s.solution.mesh.polygons[p], [&](uint32_t) { ++n; });
     prefix[p + 1] = prefix[p] + n;
   }
   std::vector<int64_t> out(h.objects.size(), 0);

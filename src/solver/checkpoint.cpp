@@ -64,20 +64,22 @@ uint64_t solve_fingerprint(const Hierarchy& h, const SolverOptions& o, BackendKi
 void write_checkpoint(const std::string& path, const SolverState& s, uint64_t fingerprint) {
   static_assert(std::is_trivially_copyable_v<SolverStats>);
   ByteWriter w;
-  w.pod(uint64_t(s.mesh.polygons.size()));
-  for (size_t p = 0; p < s.mesh.polygons.size(); ++p)
-    write_polygon(w, s.mesh.polygons[p], s.vertex_states[p], s.shared.copies[p]);
-  w.vec(s.materials);
-  w.vec(s.unshot_energy);
-  w.pod(s.emitted_energy), w.pod(s.absorbed_energy), w.pod(s.shots), w.pod(s.stats);
+  w.pod(uint64_t(s.solution.mesh.polygons.size()));
+  for (size_t p = 0; p < s.solution.mesh.polygons.size(); ++p)
+    write_polygon(w, s.solution.mesh.polygons[p], s.solution.vertex_states[p],
+                  s.scene.shared.copies[p]);
+  w.vec(s.solution.materials);
+  w.vec(s.energy.unshot_energy);
+  w.pod(s.energy.emitted_energy), w.pod(s.energy.absorbed_energy), w.pod(s.shots.count),
+      w.pod(s.stats);
   std::vector<HistoryRecord> history;
-  for (const ShotRecord& h : s.history)
+  for (const ShotRecord& h : s.shots.history)
     history.push_back({h.shot, h.source, h.seconds, h.unshot_fraction});
   w.vec(history);
-  w.pod(uint64_t(s.shot_log.size()));
-  for (const ShotSource& src : s.shot_log) write_shot(w, src);
-  w.vec(s.cluster_cost);
-  w.vec(s.cluster_balance);
+  w.pod(uint64_t(s.shots.sources.size()));
+  for (const ShotSource& src : s.shots.sources) write_shot(w, src);
+  w.vec(s.shots.cluster_cost);
+  w.vec(s.energy.cluster_balance);
 
   const uint64_t checksum = Fingerprint().bytes(w.out.data(), w.out.size()).value();
   AtomicFile f(path);
@@ -93,9 +95,9 @@ void write_checkpoint(const std::string& path, const SolverState& s, uint64_t fi
 
 void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerprint) {
   // Kept shadow-ray answers belong to the mesh being replaced.
-  s.kept_rays.clear();
-  s.kept_rays_bytes = 0;
-  s.cluster_last_shot.clear();
+  s.kept.clusters.clear();
+  s.kept.bytes = 0;
+  s.kept.last_shot.clear();
   const std::string data = read_file(path);
   if (data.size() < kHeader || std::memcmp(data.data(), kMagic, sizeof kMagic) != 0) {
     throw Error(SourceLoc{path}, "not a rad checkpoint");
@@ -123,8 +125,8 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
 
   // Read everything into a copy, so a failure leaves `s` as it was.
   ByteReader r(data, kHeader, path, "checkpoint");
-  if (r.pod<uint64_t>() != s.mesh.polygons.size()) r.fail("another number of polygons");
-  const size_t np = s.mesh.polygons.size();
+  if (r.pod<uint64_t>() != s.solution.mesh.polygons.size()) r.fail("another number of polygons");
+  const size_t np = s.solution.mesh.polygons.size();
   Mesh mesh;
   mesh.polygons.resize(np);
   std::vector<std::vector<VertexState>> states(np);
@@ -146,7 +148,8 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   std::vector<UnshotEnergy> unshot_energy;
   r.vec(materials);
   r.vec(unshot_energy);
-  if (materials.size() != s.materials.size() || unshot_energy.size() != s.unshot_energy.size()) {
+  if (materials.size() != s.solution.materials.size() ||
+      unshot_energy.size() != s.energy.unshot_energy.size()) {
     r.fail("another number of materials or polygons");
   }
   const auto emitted = r.pod<double>(), absorbed = r.pod<double>();
@@ -160,33 +163,35 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   }
   const auto logged = r.pod<uint64_t>();
   std::vector<ShotSource> log;
-  for (uint64_t i = 0; i < logged; ++i) log.push_back(read_shot(r, s.clusters.size()));
+  for (uint64_t i = 0; i < logged; ++i) log.push_back(read_shot(r, s.scene.clusters.size()));
   std::vector<double> cluster_cost;
   r.vec(cluster_cost);
-  if (cluster_cost.size() > s.clusters.size()) r.fail("more shot costs than clusters");
+  if (cluster_cost.size() > s.scene.clusters.size()) r.fail("more shot costs than clusters");
   std::vector<ShotBalance> balance;
   r.vec(balance);
-  if (balance.size() > s.clusters.size()) r.fail("more shot balances than clusters");
+  if (balance.size() > s.scene.clusters.size()) r.fail("more shot balances than clusters");
   if (!r.done()) r.fail("trailing bytes");
   if (shots < 0 || uint64_t(shots) < logged) r.fail("more shots logged than made");
 
   std::vector<uint32_t> initial(np);
-  for (size_t p = 0; p < np; ++p) initial[p] = uint32_t(s.mesh.polygons[p].vertex_count());
-  s.mesh = std::move(mesh);
-  s.vertex_states = std::move(states);
-  s.shared.copies = std::move(shared.copies);
-  find_edge_midpoints(s, initial);
-  s.materials = std::move(materials);
-  s.unshot_energy = std::move(unshot_energy);
-  s.emitted_energy = emitted, s.absorbed_energy = absorbed, s.shots = shots, s.stats = stats;
-  s.reference_energy = emitted;  // a checkpoint is of a run without edits
-  s.history = std::move(history);
-  s.shot_log = std::move(log);
-  s.cluster_cost = std::move(cluster_cost);
-  s.cluster_retention.clear();
-  for (const ShotBalance& b : balance) s.cluster_retention.push_back(b.retention());
-  s.cluster_balance = std::move(balance);
-  update_unshot_totals(s);
+  for (size_t p = 0; p < np; ++p) initial[p] = uint32_t(s.solution.mesh.polygons[p].vertex_count());
+  s.solution.mesh = std::move(mesh);
+  s.solution.vertex_states = std::move(states);
+  s.scene.shared.copies = std::move(shared.copies);
+  find_edge_midpoints(s.scene.shared, s.solution.mesh, s.solution.hierarchy->triangles,
+                      s.scene.clusters, initial);
+  s.solution.materials = std::move(materials);
+  s.energy.unshot_energy = std::move(unshot_energy);
+  s.energy.emitted_energy = emitted, s.energy.absorbed_energy = absorbed, s.shots.count = shots,
+  s.stats = stats;
+  s.energy.reference_energy = emitted;  // a checkpoint is of a run without edits
+  s.shots.history = std::move(history);
+  s.shots.sources = std::move(log);
+  s.shots.cluster_cost = std::move(cluster_cost);
+  s.energy.cluster_retention.clear();
+  for (const ShotBalance& b : balance) s.energy.cluster_retention.push_back(b.retention());
+  s.energy.cluster_balance = std::move(balance);
+  update_unshot_totals(s.energy, s.solution, s.scene.clusters, s.ownership.ranks);
 }
 
 }  // namespace rad

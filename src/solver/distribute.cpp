@@ -10,17 +10,16 @@
 
 namespace rad {
 
-std::vector<uint32_t> assign_clusters(const SolverState& s, int ranks) {
+std::vector<uint32_t> assign_clusters(const Clusters& clusters, const Mesh& mesh, int ranks) {
   assert(ranks >= 1);
-  const Clusters& k = s.clusters;
   std::vector<uint64_t> load(size_t(ranks), 0);
-  std::vector<uint32_t> owner(k.size(), 0);
-  for (size_t c = 0; c < k.size(); ++c) {
+  std::vector<uint32_t> owner(clusters.size(), 0);
+  for (size_t c = 0; c < clusters.size(); ++c) {
     size_t least = 0;
     for (size_t r = 1; r < load.size(); ++r) least = load[r] < load[least] ? r : least;
     owner[c] = uint32_t(least);
-    for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j)
-      load[least] += s.mesh.polygons[k.polygons[j]].vertex_count();
+    for (uint32_t j = clusters.first[c]; j < clusters.first[c + 1]; ++j)
+      load[least] += mesh.polygons[clusters.polygons[j]].vertex_count();
   }
   return owner;
 }
@@ -29,74 +28,77 @@ void distribute(SolverState& s, Ranks& ranks, uint64_t identity) {
   // Every rank must start from the same state: a scene or a checkpoint that one node sees
   // differently would make the ranks shoot different shots and wait on each other for ever.
   auto same = [&](int64_t v) { return ranks.max(v) == -ranks.max(-v); };
-  if (!same(int64_t(identity >> 2)) || !same(s.shots)) {
+  if (!same(int64_t(identity >> 2)) || !same(s.shots.count)) {
     throw Error(
         "the ranks do not hold the same solve: the scene, the options or the checkpoint differ "
         "between them (is every file the same on every node?)");
   }
-  s.ranks = &ranks;
-  s.cluster_owner = assign_clusters(s, ranks.size());
-  s.owned.assign(s.mesh.polygons.size(), 0);
-  const Clusters& k = s.clusters;
-  for (size_t c = 0; c < k.size(); ++c) {
-    if (s.cluster_owner[c] != uint32_t(ranks.rank())) continue;
-    for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) s.owned[k.polygons[j]] = 1;
+  s.ownership.ranks = &ranks;
+  s.ownership.cluster_owner = assign_clusters(s.scene.clusters, s.solution.mesh, ranks.size());
+  s.ownership.owned.assign(s.solution.mesh.polygons.size(), 0);
+  const Clusters& clusters = s.scene.clusters;
+  for (size_t c = 0; c < clusters.size(); ++c) {
+    if (s.ownership.cluster_owner[c] != uint32_t(ranks.rank())) continue;
+    for (uint32_t j = clusters.first[c]; j < clusters.first[c + 1]; ++j)
+      s.ownership.owned[clusters.polygons[j]] = 1;
   }
   release_foreign(s);
   if (ranks.rank() != 0) {  // rank 0 keeps the counters a resumed checkpoint brought
     s.stats = SolverStats{};
-    s.absorbed_energy = 0.0;
+    s.energy.absorbed_energy = 0.0;
   }
-  update_unshot_totals(s);
+  update_unshot_totals(s.energy, s.solution, s.scene.clusters, s.ownership.ranks);
 }
 
 void release_foreign(SolverState& s) {
-  for (size_t p = 0; p < s.mesh.polygons.size(); ++p) {
-    if (s.owns(p)) continue;
-    s.mesh.polygons[p] = PolygonMesh{};
-    std::vector<VertexState>().swap(s.vertex_states[p]);
-    std::vector<VertexCopy>().swap(s.shared.copies[p]);
-    s.unshot_energy[p] = UnshotEnergy{};
+  for (size_t p = 0; p < s.solution.mesh.polygons.size(); ++p) {
+    if (s.ownership.owns(p)) continue;
+    s.solution.mesh.polygons[p] = PolygonMesh{};
+    std::vector<VertexState>().swap(s.solution.vertex_states[p]);
+    std::vector<VertexCopy>().swap(s.scene.shared.copies[p]);
+    s.energy.unshot_energy[p] = UnshotEnergy{};
   }
 }
 
 std::vector<RankReport> collect(SolverState& s) {
   static_assert(std::is_trivially_copyable_v<RankReport>);
-  assert(s.ranks);
-  Ranks& ranks = *s.ranks;
+  assert(s.ownership.ranks);
+  Ranks& ranks = *s.ownership.ranks;
   RankReport mine;
   mine.stats = s.stats;
-  mine.absorbed_energy = s.absorbed_energy;
+  mine.absorbed_energy = s.energy.absorbed_energy;
   mine.communication_seconds = ranks.communication_seconds;
   mine.broadcast_bytes = ranks.broadcast_bytes;
   mine.broadcasts = ranks.broadcasts;
-  for (size_t p = 0; p < s.mesh.polygons.size(); ++p)
-    if (s.owns(p)) mine.vertices += s.mesh.polygons[p].vertex_count();
+  for (size_t p = 0; p < s.solution.mesh.polygons.size(); ++p)
+    if (s.ownership.owns(p)) mine.vertices += s.solution.mesh.polygons[p].vertex_count();
   ByteWriter w;
   w.pod(mine);
   if (ranks.rank() != 0) {
-    for (size_t p = 0; p < s.mesh.polygons.size(); ++p) {
-      if (!s.owns(p)) continue;
+    for (size_t p = 0; p < s.solution.mesh.polygons.size(); ++p) {
+      if (!s.ownership.owns(p)) continue;
       w.pod(uint32_t(p));
-      write_polygon(w, s.mesh.polygons[p], s.vertex_states[p], s.shared.copies[p]);
-      w.pod(s.unshot_energy[p]);
+      write_polygon(w, s.solution.mesh.polygons[p], s.solution.vertex_states[p],
+                    s.scene.shared.copies[p]);
+      w.pod(s.energy.unshot_energy[p]);
     }
   }
   // Every polygon of every rank must come: count them as they arrive.
   std::vector<uint64_t> expected(size_t(ranks.size()), 0), received(size_t(ranks.size()), 0);
-  for (size_t p = 0; p < s.mesh.polygons.size(); ++p)
-    ++expected[s.cluster_owner[s.clusters.cluster_of[p]]];
+  for (size_t p = 0; p < s.solution.mesh.polygons.size(); ++p)
+    ++expected[s.ownership.cluster_owner[s.scene.clusters.cluster_of[p]]];
   std::vector<RankReport> reports;
   ranks.gather(std::move(w.out), [&](int r, std::string& part) {
     ByteReader in(part, 0, fmt::format("rank {}", r), "message between ranks");
     reports.push_back(in.pod<RankReport>());
     while (r > 0 && !in.done()) {
       const auto p = in.pod<uint32_t>();
-      if (p >= s.mesh.polygons.size() || s.cluster_owner[s.clusters.cluster_of[p]] != uint32_t(r))
+      if (p >= s.solution.mesh.polygons.size() ||
+          s.ownership.cluster_owner[s.scene.clusters.cluster_of[p]] != uint32_t(r))
         in.fail(fmt::format("polygon {} is not the rank's", p));
-      read_polygon(in, s.mesh.polygons[p], s.vertex_states[p], s.shared.copies[p],
-                   s.mesh.polygons.size());
-      s.unshot_energy[p] = in.pod<UnshotEnergy>();
+      read_polygon(in, s.solution.mesh.polygons[p], s.solution.vertex_states[p],
+                   s.scene.shared.copies[p], s.solution.mesh.polygons.size());
+      s.energy.unshot_energy[p] = in.pod<UnshotEnergy>();
       ++received[size_t(r)];
     }
     if (r > 0 && received[size_t(r)] != expected[size_t(r)])
@@ -123,14 +125,13 @@ double total_absorbed(const std::vector<RankReport>& reports) {
   return t;
 }
 
-void share_shot_source(SolverState& s, ShotSource& src, uint32_t owner) {
-  assert(s.ranks);
+void share_shot_source(Ranks& ranks, size_t cluster_count, ShotSource& src, uint32_t owner) {
   ByteWriter w;
-  if (uint32_t(s.ranks->rank()) == owner) write_shot(w, src);
-  s.ranks->broadcast(w.out, int(owner));
-  if (uint32_t(s.ranks->rank()) == owner) return;
+  if (uint32_t(ranks.rank()) == owner) write_shot(w, src);
+  ranks.broadcast(w.out, int(owner));
+  if (uint32_t(ranks.rank()) == owner) return;
   ByteReader in(w.out, 0, fmt::format("rank {}", owner), "message between ranks");
-  src = read_shot(in, s.clusters.size());
+  src = read_shot(in, cluster_count);
 }
 
 }  // namespace rad

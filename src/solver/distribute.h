@@ -26,12 +26,13 @@ struct RankReport {
 /// that holds the fewest initial-mesh vertices so far (ties: the lowest rank). Deterministic,
 /// balanced by vertex count, and spread over the scene (neighbouring clusters go to different
 /// ranks, so a shot that reaches one room still finds work on every rank).
-std::vector<uint32_t> assign_clusters(const SolverState& s, int ranks);
+std::vector<uint32_t> assign_clusters(const Clusters& clusters, const Mesh& mesh, int ranks);
 
-/// Makes `s` this rank's share of the solve: sets s.ranks, s.cluster_owner and s.owned, frees
-/// the meshes and zeroes the unshot energies of the polygons of other ranks, and sums the unshot
-/// totals over the ranks. Collective. Throws rad::Error (on every rank) when the ranks' states
-/// differ: another `identity` (the solve's fingerprint) or another number of shots done.
+/// Makes `s` this rank's share of the solve: sets s.ownership.ranks, s.ownership.cluster_owner and
+/// s.ownership.owned, frees the meshes and zeroes the unshot energies of the polygons of other
+/// ranks, and sums the unshot totals over the ranks. Collective. Throws rad::Error (on every rank)
+/// when the ranks' states differ: another `identity` (the solve's fingerprint) or another number of
+/// shots done.
 void distribute(SolverState& s, Ranks& ranks, uint64_t identity);
 
 /// Brings every polygon's mesh and unshot energy to rank 0, so its state is whole (as one
@@ -46,7 +47,8 @@ void release_foreign(SolverState& s);
 SolverStats total_stats(const std::vector<RankReport>& reports);
 double total_absorbed(const std::vector<RankReport>& reports);
 
-/// The owner's `src` on every rank (the others pass an empty one). Collective.
-void share_shot_source(SolverState& s, ShotSource& src, uint32_t owner);
+/// The owner's `src` on every rank (the others pass an empty one), a source of one of
+/// `cluster_count` clusters. Collective.
+void share_shot_source(Ranks& ranks, size_t cluster_count, ShotSource& src, uint32_t owner);
 
 }  // namespace rad

@@ -2,13 +2,14 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
+#include <unordered_map>
 #include <vector>
 
+#include "mesh/patch_mesh.h"
 #include "solver/shot_source.h"
 
 namespace rad {
-
-struct SolverState;
 
 /// One cluster's shadow-ray answers, kept for its next shot. A closed room shoots its walls again
 /// and again (each time with what the furniture and the other walls sent back), and each shot of
@@ -45,13 +46,23 @@ struct VertexRays {
 /// its answers filled 512 MiB and were never used.
 inline constexpr uint64_t kKeptWithin = 64;
 
-/// The kept answers for the shot of `src` to s.receivers, made ready (sized for every receiving
-/// vertex, the moved ends marked), or null: unless the cluster shot within kKeptWithin shots
-/// before (or has answers kept already), or when the answers kept would fill
-/// s.options.kept_rays_bytes.
-KeptRays* prepare_kept_rays(SolverState& s, const ShotSource& src);
+/// Every cluster's kept answers, and when each last shot.
+struct KeptRayStore {
+  std::unordered_map<int32_t, KeptRays> clusters;  // per cluster shot often enough
+  size_t bytes = 0;                                // what they hold in all
+  std::vector<uint64_t> last_shot;                 // per cluster: its last shot's number, 0: none
+};
 
-/// Vertex v of receiver i (its index in s.receivers) in `kept`.
+/// The kept answers for shot number `shot` (1-based), of `src` to `receivers` (polygons of
+/// `mesh`, in index order), made ready (sized for every receiving vertex, the moved ends marked),
+/// or null: unless the cluster shot within kKeptWithin shots before (or has answers kept
+/// already), or when the answers kept would exceed `max_bytes`. Records the shot in
+/// store.last_shot (sized for `cluster_count` clusters) either way.
+KeptRays* prepare_kept_rays(KeptRayStore& store, const ShotSource& src, uint64_t shot,
+                            std::span<const uint32_t> receivers, const Mesh& mesh,
+                            size_t cluster_count, size_t max_bytes);
+
+/// Vertex v of receiver i (its index in the list the answers were prepared for) in `kept`.
 inline VertexRays vertex_rays(KeptRays& kept, size_t i, uint32_t v) {
   return {kept.answers[i].data() + size_t(v) * (1 + kept.words), kept.epoch, kept.moved.data()};
 }

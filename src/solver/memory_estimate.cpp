@@ -19,12 +19,12 @@ constexpr double kMidpointBytes = 48.0;
 }  // namespace
 
 double worst_case_growth_bytes(const SolverState& s) {
-  const float split_size = 2.0f * s.min_size;
+  const float split_size = 2.0f * s.scene.min_size;
   return tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, s.mesh.polygons.size()), 0.0,
+      tbb::blocked_range<size_t>(0, s.solution.mesh.polygons.size()), 0.0,
       [&](const tbb::blocked_range<size_t>& r, double bytes) {
         for (size_t p = r.begin(); p < r.end(); ++p) {
-          const PolygonMesh& m = s.mesh.polygons[p];
+          const PolygonMesh& m = s.solution.mesh.polygons[p];
           for_each_leaf(m, [&](uint32_t e) {
             const float size = element_size(m, e);
             if (!(size >= split_size)) return;
@@ -43,9 +43,10 @@ double worst_case_growth_bytes(const SolverState& s) {
 double shot_log_bytes(const SolverState& s, size_t c) {
   // n samples padded to lanes (10 floats each, 3 more for the ray ends), about 16 n fine
   // samples (10 floats each, a group index per lane group), the outline.
-  const int m = sample_grid_for(s, s.clusters.extent[c]);
+  const int m = sample_grid_for(s, s.scene.clusters.extent[c]);
   const double n = double(m) * m, fine = 16.0 * n;
-  const double outline = double(s.clusters.edge_first[c + 1] - s.clusters.edge_first[c]);
+  const double outline =
+      double(s.scene.clusters.edge_first[c + 1] - s.scene.clusters.edge_first[c]);
   return sizeof(ShotSource) + 4.0 * (13.0 * (n + 8) + 10.0 * (fine + 8 * n) + fine / 8) +
          24.0 * outline;
 }

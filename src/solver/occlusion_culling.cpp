@@ -503,7 +503,7 @@ ShotOccluders choose_occluders(const OcclusionCulling& c, const ShotSource& src)
   // skips anyway: the points it reaches lie nearer, and so do the segments to them.
   std::vector<uint32_t> near;
   for (size_t k = 0; k < c.occluder_boxes.size(); ++k)
-    if (src.roulette_within(c.occluder_boxes[k])) near.push_back(uint32_t(k));
+    if (src.roulette_distance_reaches(c.occluder_boxes[k])) near.push_back(uint32_t(k));
   std::vector<double> score(near.size(), 0.0);
   tbb::parallel_for(size_t(0), near.size(), [&](size_t i) {
     const Occluder& o = c.occluders[near[i]];
@@ -551,7 +551,7 @@ void walk(const OcclusionCulling& c, const ShotSource& src, const ShotOccluders&
     Visit v = stack.back();
     stack.pop_back();
     const Aabb& b = tree.box[v.node];
-    if (!src.roulette_reaches(b)) continue;
+    if (!src.roulette_reaches_box(b)) continue;
     if (src.planar && highest_above(b, src.centroid, src.axis) <= front) continue;
     if (v.mask != 0 && tree.cullable[v.node] && so.hidden(b, v.mask, last)) continue;
     if (tree.leaf(v.node)) {

@@ -29,6 +29,11 @@ enum class MidpointRule : uint8_t {
   Exact,
 };
 
+/// "analytic" | "samples": the names --form-factor takes.
+inline const char* to_string(FormFactorMethod m) {
+  return m == FormFactorMethod::Samples ? "samples" : "analytic";
+}
+
 struct SolverOptions {
   bool shadows = true;  // false: every visibility term is 1 (-noshadows)
   /// A source polygon gets n = m^2 samples, m from sample_grid up to max_sample_grid: the
@@ -43,14 +48,18 @@ struct SolverOptions {
   /// this fraction of the radiosity scale (in any channel).
   float subdivision_threshold = 0.05f;
   MidpointRule midpoints = MidpointRule::Exact;
-  /// Smallest edge length an element may reach; <= 0 derives it from the scene.
+  /// Smallest edge length an element may reach; <= 0 derives it from the scene: its size
+  /// (scene_size, solver_state.h) over kMinSizeDivisor.
   float min_size = 0.0f;
+  static constexpr float kMinSizeDivisor = 256.0f;
   /// Largest edge length an element starts with: polygons are split uniformly to this size
   /// before the first shot (<= 0 derives it from the scene). Subdivision only looks at
   /// vertices, so a light's peak in the middle of a big floor whose corners are all dim would
-  /// otherwise never be seen (measured: the Cornell floor lit by its light alone came out 41%
-  /// too dark with the bare 2-triangle floor).
+  /// otherwise never be seen (the Cornell floor lit by its light alone comes out far too dark
+  /// with the bare 2-triangle floor). Derived: the scene's size over kMaxSizeDivisor, at least
+  /// twice min_size.
   float max_size = 0.0f;
+  static constexpr float kMaxSizeDivisor = 16.0f;
   /// Intensity cut: one shadow ray instead of one per sample for a vertex whose unoccluded gain
   /// from the shot is below this fraction of the radiosity scale (to the sample that weighs
   /// most: the gain is the unoccluded one if it is clear, else 0).

@@ -1,6 +1,6 @@
 // The processes that solve one scene together under MPI (`mpirun -np N rad ...`): each holds
 // the whole geometry for visibility and receives for its own share of the clusters. A run of one
-// process has no Ranks at all (SolverState::ranks is null). The one virtual interface is the
+// process has no Ranks at all (Ownership::ranks is null). The one virtual interface is the
 // run-time choice between that and MPI; Open MPI's headers stay inside mpi_ranks.cpp.
 #pragma once
 

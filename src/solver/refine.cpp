@@ -46,14 +46,14 @@ bool needs_split(const PolygonMesh& m, const std::vector<VertexState>& vs, const
 }  // namespace
 
 bool needs_refinement(const SolverState& s, uint32_t p) {
-  const PolygonMesh& m = s.mesh.polygons[p];
-  const std::vector<VertexState>& vs = s.vertex_states[p];
-  const Material& mat = s.material_of(p);
-  const float limit = s.options.subdivision_threshold * s.radiosity_scale;
+  const PolygonMesh& m = s.solution.mesh.polygons[p];
+  const std::vector<VertexState>& vs = s.solution.vertex_states[p];
+  const Material& mat = s.solution.material_of(p);
+  const float limit = s.options.subdivision_threshold * s.energy.radiosity_scale;
   bool any = false;
   std::array<bool, 3> d;
   for_each_leaf(m, [&](uint32_t e) {
-    any = any || needs_split(m, vs, mat, s.buried, p, e, limit, 2.0f * s.min_size, &d);
+    any = any || needs_split(m, vs, mat, s.scene.buried, p, e, limit, 2.0f * s.scene.min_size, &d);
   });
   return any;
 }
@@ -71,11 +71,11 @@ std::vector<uint32_t> needing_refinement(const SolverState& s, std::span<const u
 Vec3 regather_shots(const SolverState& s, const Vec3& x, uint32_t polygon, bool major_only,
                     const VisibilityBackend& vis, const GatherSettings& settings,
                     GatherScratch& scratch, Vec3* major_part) {
-  const Triangles& tris = s.hierarchy->triangles;
+  const Triangles& tris = s.solution.hierarchy->triangles;
   const Vec3 n = tris.normal[polygon], centroid = tris.centroid(polygon);
   const GatherSettings own = receiver_settings(settings, s, polygon);
   Vec3 all(0.0f), major(0.0f);
-  for (const ShotSource& k : s.shot_log) {
+  for (const ShotSource& k : s.shots.sources) {
     if ((major_only && !k.major) || !may_receive(s, polygon, k)) continue;
     const Vec3 g = gather_from_source(x, n, centroid, k, vis, own, scratch);
     all += g;
@@ -93,9 +93,9 @@ namespace {
 template <typename Compute>
 void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
             const VisibilityBackend& vis, const Compute& compute) {
-  const Triangles& tris = s.hierarchy->triangles;
-  const float limit = s.options.subdivision_threshold * s.radiosity_scale;
-  const float min_split_size = 2.0f * s.min_size;  // children keep sizes >= min_size
+  const Triangles& tris = s.solution.hierarchy->triangles;
+  const float limit = s.options.subdivision_threshold * s.energy.radiosity_scale;
+  const float min_split_size = 2.0f * s.scene.min_size;  // children keep sizes >= min_size
   // Only the given polygons are looked at: a shot of a Lights list reaches a few rooms of a
   // building, and per-polygon work over the whole scene would cost more than the shot.
   const size_t np = polygons.size();
@@ -105,7 +105,7 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
   std::vector<std::vector<uint32_t>> check(np), next(np);
   std::vector<std::vector<ExactVertex>> exact(np);
   std::vector<std::vector<EdgeMidpoint>> on_edges(np);
-  SharedVertices& shared = s.shared;
+  SharedVertices& shared = s.scene.shared;
   // Copies take the current shot's state from a vertex that has it: only after a shot.
   const bool may_copy = after_shot && all_exact;
   std::vector<uint64_t> splits(np, 0), interpolated(np, 0);
@@ -126,14 +126,14 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
         on_edges[i].clear();
         if (!first_pass && check[i].empty()) continue;
         const uint32_t p = polygons[i];
-        const bool sharing = shares_vertices(s.clusters, p);
-        PolygonMesh& m = s.mesh.polygons[p];
-        std::vector<VertexState>& vs = s.vertex_states[p];
-        const Material& mat = s.material_of(p);
+        const bool sharing = shares_vertices(s.scene.clusters, p);
+        PolygonMesh& m = s.solution.mesh.polygons[p];
+        std::vector<VertexState>& vs = s.solution.vertex_states[p];
+        const Material& mat = s.solution.material_of(p);
         auto consider = [&](uint32_t e) {
           const uint32_t v[3] = {m.elements[e].v[0], m.elements[e].v[1], m.elements[e].v[2]};
           std::array<bool, 3> d;
-          if (!needs_split(m, vs, mat, s.buried, p, e, limit, min_split_size, &d)) return;
+          if (!needs_split(m, vs, mat, s.scene.buried, p, e, limit, min_split_size, &d)) return;
           const bool d01 = d[0], d12 = d[1], d20 = d[2];
           const bool exact_edge[3][3] = {{false, d01, d20}, {d01, false, d12}, {d20, d12, false}};
           auto index_of = [&](uint32_t x) { return x == v[0] ? 0 : x == v[1] ? 1 : 2; };
@@ -154,7 +154,7 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
               VertexState& mid = vs[c.vertex];
               mid.irradiance = (a.irradiance + b.irradiance) * 0.5f;
               mid.unshot = (a.unshot + b.unshot) * 0.5f;
-              mid.shot = (a.shot + b.shot) * 0.5f;
+              mid.last_gain = (a.last_gain + b.last_gain) * 0.5f;
               mid.major = (a.major + b.major) * 0.5f;
               ++interpolated[i];
             }
@@ -171,9 +171,9 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
           for (uint32_t e : check[i]) consider(e);
         }
         // The new vertices inside solids, before any of them gathers (step 3).
-        if (s.buried.found) {
-          find_buried_vertices(tris, p, m, made_before, vis, buried_probe(s), s.buried.moved[p],
-                               probes[i]);
+        if (s.scene.buried.found) {
+          find_buried_vertices(tris, p, m, made_before, vis, buried_probe(s.scene),
+                               s.scene.buried.moved[p], probes[i]);
         }
       }
     });
@@ -184,13 +184,13 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
     for (size_t i = 0; i < np; ++i) {
       const uint32_t p = polygons[i];
       for (const EdgeMidpoint& e : on_edges[i]) {
-        const PolygonMesh& m = s.mesh.polygons[p];
-        const auto place = shared_place(s.clusters, p, m.positions[e.vertex]);
+        const PolygonMesh& m = s.solution.mesh.polygons[p];
+        const auto place = shared_place(s.scene.clusters, p, m.positions[e.vertex]);
         const SharedVertices::Gatherer self{p, e.vertex};
         const auto [it, made] = shared.edge_midpoints.try_emplace(*place, self);
         if (made) continue;
         SharedVertices::Gatherer& g = it->second;
-        if (may_copy && e.exact >= 0 && s.received[g.polygon]) {
+        if (may_copy && e.exact >= 0 && s.receivers.marked[g.polygon]) {
           ExactVertex& x = exact[i][size_t(e.exact)];
           x.from_polygon = g.polygon, x.from_vertex = g.vertex;
           shared.copies[p].push_back({e.vertex, g.polygon, g.vertex});
@@ -213,10 +213,10 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
     tbb::parallel_for(size_t(0), flat.size(), [&](size_t i) {
       const ExactVertex& x = flat[i];
       if (x.from_polygon < 0) return;
-      const VertexState& from = s.vertex_states[size_t(x.from_polygon)][x.from_vertex];
-      VertexState& to = s.vertex_states[x.polygon][x.vertex];
+      const VertexState& from = s.solution.vertex_states[size_t(x.from_polygon)][x.from_vertex];
+      VertexState& to = s.solution.vertex_states[x.polygon][x.vertex];
       to.irradiance = from.irradiance, to.unshot = from.unshot;
-      to.shot = from.shot, to.major = from.major;
+      to.last_gain = from.last_gain, to.major = from.major;
     });
     s.stats.exact_midpoints += flat.size();
     any = false;
@@ -236,13 +236,13 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
 
 void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,
                        bool major, std::span<const uint32_t> polygons) {
-  const Triangles& tris = s.hierarchy->triangles;
+  const Triangles& tris = s.solution.hierarchy->triangles;
   const GatherSettings settings = gather_settings(s);
   refine(s, polygons, true, vis, [&](const ExactVertex& x, GatherScratch& sc) {
-    const Vec3 at =
-        s.buried.gather_point(x.polygon, x.vertex, s.mesh.polygons[x.polygon].positions[x.vertex]);
-    std::vector<VertexState>& vs = s.vertex_states[x.polygon];
-    const Vec3 rho = s.material_of(x.polygon).reflectance;
+    const Vec3 at = s.scene.buried.gather_point(
+        x.polygon, x.vertex, s.solution.mesh.polygons[x.polygon].positions[x.vertex]);
+    std::vector<VertexState>& vs = s.solution.vertex_states[x.polygon];
+    const Vec3 rho = s.solution.material_of(x.polygon).reflectance;
     const VertexState &a = vs[x.a], &b = vs[x.b];
     VertexState& mid = vs[x.vertex];
     const Vec3 dh = gather_from_source(at, tris.normal[x.polygon], tris.centroid(x.polygon), src,
@@ -250,21 +250,23 @@ void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBa
     Vec3 major_h(0.0f);
     regather_shots(s, at, x.polygon, true, vis, settings, sc, &major_h);
     // Earlier minor shots: interpolated from the edge's ends (design §5).
-    Vec3 minor_a = a.irradiance - a.shot - a.major;
-    Vec3 minor_b = b.irradiance - b.shot - b.major;
+    Vec3 minor_a = a.irradiance - a.last_gain - a.major;
+    Vec3 minor_b = b.irradiance - b.last_gain - b.major;
     if (major) {  // the ends' major part includes this shot's
-      minor_a += a.shot;
-      minor_b += b.shot;
+      minor_a += a.last_gain;
+      minor_b += b.last_gain;
     }
     const Vec3 earlier_h = (minor_a + minor_b) * 0.5f + major_h;
     // A buried vertex's unshot radiosity holds none of its gains (buried_vertices.h).
-    const Vec3 a_u = s.buried.is_moved(x.polygon, x.a) ? a.unshot : a.unshot - rho * a.shot;
-    const Vec3 b_u = s.buried.is_moved(x.polygon, x.b) ? b.unshot : b.unshot - rho * b.shot;
+    const Vec3 a_u =
+        s.scene.buried.is_moved(x.polygon, x.a) ? a.unshot : a.unshot - rho * a.last_gain;
+    const Vec3 b_u =
+        s.scene.buried.is_moved(x.polygon, x.b) ? b.unshot : b.unshot - rho * b.last_gain;
     const Vec3 earlier_u = (a_u + b_u) * 0.5f;
-    const bool buried = s.buried.is_moved(x.polygon, x.vertex);
+    const bool buried = s.scene.buried.is_moved(x.polygon, x.vertex);
     mid.irradiance = earlier_h + dh;
     mid.unshot = buried ? earlier_u : earlier_u + rho * dh;
-    mid.shot = dh;
+    mid.last_gain = dh;
     mid.major = major ? major_h + dh : major_h;
   });
 }
@@ -274,17 +276,17 @@ void refine_after_edit(SolverState& s, const Vec3& d_rho, const VisibilityBacken
   const GatherSettings settings = gather_settings(s);
   refine(s, needing_refinement(s, polygons), false, vis,
          [&](const ExactVertex& x, GatherScratch& sc) {
-           std::vector<VertexState>& vs = s.vertex_states[x.polygon];
+           std::vector<VertexState>& vs = s.solution.vertex_states[x.polygon];
            const VertexState &a = vs[x.a], &b = vs[x.b];
            VertexState& mid = vs[x.vertex];
            // Every earlier shot gathered again: H exact.
-           const Vec3 at = s.buried.gather_point(x.polygon, x.vertex,
-                                                 s.mesh.polygons[x.polygon].positions[x.vertex]);
+           const Vec3 at = s.scene.buried.gather_point(
+               x.polygon, x.vertex, s.solution.mesh.polygons[x.polygon].positions[x.vertex]);
            mid.irradiance = regather_shots(s, at, x.polygon, false, vis, settings, sc, &mid.major);
            // Unshot: the edit's part d_rho * H exact, the rest interpolated (transient).
            mid.unshot = (a.unshot - d_rho * a.irradiance + b.unshot - d_rho * b.irradiance) * 0.5f;
-           if (!s.buried.is_moved(x.polygon, x.vertex)) mid.unshot += d_rho * mid.irradiance;
-           mid.shot = Vec3(0.0f);
+           if (!s.scene.buried.is_moved(x.polygon, x.vertex)) mid.unshot += d_rho * mid.irradiance;
+           mid.last_gain = Vec3(0.0f);
          });
 }
 

@@ -23,8 +23,8 @@ bool needs_refinement(const SolverState& s, uint32_t p);
 /// Those of `polygons` that needs_refinement names, in order.
 std::vector<uint32_t> needing_refinement(const SolverState& s, std::span<const uint32_t> polygons);
 
-/// The shots of s.shot_log gathered again at point x of `polygon` (all, or the major ones only);
-/// the major ones' part is also written to *major_part when given.
+/// The shots of s.shots.sources gathered again at point x of `polygon` (all, or the major ones
+/// only); the major ones' part is also written to *major_part when given.
 Vec3 regather_shots(const SolverState& s, const Vec3& x, uint32_t polygon, bool major_only,
                     const VisibilityBackend& vis, const GatherSettings& settings,
                     GatherScratch& scratch, Vec3* major_part);
@@ -32,11 +32,13 @@ Vec3 regather_shots(const SolverState& s, const Vec3& x, uint32_t polygon, bool 
 /// Both refinements split, level by level, every leaf of their polygons whose vertices differ by
 /// more than the subdivision limit, until within the limit or at the minimum size.
 ///
-/// After a shot, over `polygons`: its receivers (s.receivers), or only those of them that
-/// needs_refinement names, the others being left as they are (the solver looks at each receiver
-/// once for this and for its bookkeeping). A new midpoint on
+/// After a shot, over `polygons`: its receivers, or only those of them that needs_refinement
+/// names, the others being left as they are (the solver looks at each receiver once for this and
+/// for its bookkeeping); a midpoint shared with a polygon the shot reached (s.receivers.marked)
+/// copies its gain. Writes the polygons' meshes and vertex states, s.scene.shared and
+/// s.scene.buried (for the new vertices) and s.stats. A new midpoint on
 /// an edge whose ends differ by more than the limit (every one with MidpointRule::Exact) gathers
-/// the shot and every major shot of s.shot_log again, so only the minor shots' part is
+/// the shot and every major shot of s.shots.sources again, so only the minor shots' part is
 /// interpolated; one on an edge within the limit gets the mean of its ends, so an unsplit neighbour
 /// sharing that edge shows no discontinuity. `major` says whether the current shot is one.
 void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,

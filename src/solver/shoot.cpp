@@ -10,28 +10,29 @@ GatherSettings gather_settings(const SolverState& s) {
   GatherSettings g;
   g.method = s.options.method;
   g.shadows = s.options.shadows;
-  g.cut = s.options.intensity_cut * s.radiosity_scale;
-  g.shadow_offset = s.shadow_offset;
+  g.cut = s.options.intensity_cut * s.energy.radiosity_scale;
+  g.shadow_offset = s.scene.shadow_offset;
   return g;
 }
 
 GatherSettings receiver_settings(const GatherSettings& g, const SolverState& s, size_t p) {
-  const Hierarchy& h = *s.hierarchy;
+  const Hierarchy& h = *s.solution.hierarchy;
   GatherSettings r = g;
   r.shadows = g.shadows && h.objects[size_t(h.triangles.object[p])].receives_shadows;
   return r;
 }
 
 int32_t shooter_influence(const SolverState& s, const ShotSource& src) {
-  const Hierarchy& h = *s.hierarchy;
-  const uint32_t p = s.clusters.polygons[s.clusters.first[size_t(src.cluster)]];
+  const Hierarchy& h = *s.solution.hierarchy;
+  const uint32_t p = s.scene.clusters.polygons[s.scene.clusters.first[size_t(src.cluster)]];
   return h.objects[size_t(h.triangles.object[p])].influence;
 }
 
 bool may_receive(const SolverState& s, size_t p, const ShotSource& src) {
-  if (src.planar && s.clusters.cluster_of[p] == uint32_t(src.cluster)) return false;
-  if (!influence_reaches(*s.hierarchy, shooter_influence(s, src), uint32_t(p))) return false;
-  const Triangles& t = s.hierarchy->triangles;
+  if (src.planar && s.scene.clusters.cluster_of[p] == uint32_t(src.cluster)) return false;
+  if (!influence_reaches(*s.solution.hierarchy, shooter_influence(s, src), uint32_t(p)))
+    return false;
+  const Triangles& t = s.solution.hierarchy->triangles;
   const auto& c = t.corners[p];
   bool any_in_front = false;
   for (const Vec3& q : c) any_in_front |= receiver_side(src, q) >= 0;
@@ -40,15 +41,15 @@ bool may_receive(const SolverState& s, size_t p, const ShotSource& src) {
   return highest_above(src.box, c[0], t.normal[p]) > 0.0f;
 }
 
-void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,
-                        bool major) {
-  const Triangles& tris = s.hierarchy->triangles;
+const Receivers& shoot_to_receivers(SolverState& s, const ShotSource& src,
+                                    const VisibilityBackend& vis, bool major) {
+  const Triangles& tris = s.solution.hierarchy->triangles;
   const GatherSettings settings = gather_settings(s);
-  const SharedVertices& shared = s.shared;
+  const SharedVertices& shared = s.scene.shared;
   // The mask is kept between shots and cleared where the last shot set it: a shot that reaches
   // a few rooms of a building costs those rooms, not a pass over the whole scene.
-  std::vector<uint8_t>& received = s.received;
-  std::vector<uint32_t>& receivers = s.receivers;
+  std::vector<uint8_t>& received = s.receivers.marked;
+  std::vector<uint32_t>& receivers = s.receivers.polygons;
   if (received.size() != tris.size()) {
     received.assign(tris.size(), 0);
   } else {
@@ -62,18 +63,18 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
   std::vector<TriangleRange> ranges{{0, uint32_t(tris.size())}};
   const std::vector<uint32_t>* listed = nullptr;
   if (influence >= 0) {
-    ranges = s.hierarchy->objects[size_t(influence)].lit;
-  } else if (!s.culling.empty()) {
-    unhidden_triangles(s.culling, src, s.unhidden);
-    s.stats.hidden += tris.size() - s.unhidden.size();
-    listed = &s.unhidden;
+    ranges = s.solution.hierarchy->objects[size_t(influence)].lit;
+  } else if (!s.scene.culling.empty()) {
+    unhidden_triangles(s.scene.culling, src, s.receivers.unhidden);
+    s.stats.hidden += tris.size() - s.receivers.unhidden.size();
+    listed = &s.receivers.unhidden;
   }
   auto consider = [&](size_t n, auto&& triangle) {
     tbb::parallel_for(size_t(0), n, [&](size_t i) {
       const size_t p = triangle(i);
-      received[p] =
-          s.owns(p) && may_receive(s, p, src) &&
-          src.roulette_reaches(triangle_box(tris.corners[p]), tris.corners[p][0], tris.normal[p]);
+      received[p] = s.ownership.owns(p) && may_receive(s, p, src) &&
+                    src.roulette_reaches_triangle(triangle_box(tris.corners[p]), tris.corners[p][0],
+                                                  tris.normal[p]);
     });
     for (size_t i = 0; i < n; ++i)
       if (received[triangle(i)]) receivers.push_back(uint32_t(triangle(i)));
@@ -86,25 +87,27 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
   }
   // Work items: a polygon's vertices, or 64 of them for a finely subdivided one, so its
   // vertices spread across threads too.
-  std::vector<VertexRange>& work = s.gather_work;
+  std::vector<VertexRange>& work = s.receivers.gather_work;
   work.clear();
   for (size_t i = 0; i < receivers.size(); ++i) {
     const uint32_t p = receivers[i];
-    const uint32_t nv = uint32_t(s.mesh.polygons[p].vertex_count());
+    const uint32_t nv = uint32_t(s.solution.mesh.polygons[p].vertex_count());
     const uint32_t step = nv < 256 ? nv : 64;
     for (uint32_t v = 0; v < nv; v += step) {
       work.push_back({p, v, std::min(nv, v + step), uint32_t(i)});
     }
   }
-  KeptRays* const kept = prepare_kept_rays(s, src);
+  KeptRays* const kept =
+      prepare_kept_rays(s.kept, src, uint64_t(s.shots.count) + 1, receivers, s.solution.mesh,
+                        s.scene.clusters.size(), s.options.kept_rays_bytes);
   parallel_gather(work.size(), 1, s.stats, [&](size_t begin, size_t end, GatherScratch& sc) {
     for (size_t i = begin; i != end; ++i) {
       const VertexRange& w = work[i];
       const uint32_t p = w.polygon;
-      const PolygonMesh& mesh = s.mesh.polygons[p];
-      std::vector<VertexState>& vs = s.vertex_states[p];
+      const PolygonMesh& mesh = s.solution.mesh.polygons[p];
+      std::vector<VertexState>& vs = s.solution.vertex_states[p];
       const Vec3 n = tris.normal[p], centroid = tris.centroid(p);
-      const Vec3 rho = s.material_of(p).reflectance;
+      const Vec3 rho = s.solution.material_of(p).reflectance;
       const GatherSettings own = receiver_settings(settings, s, p);
       // A shared vertex is skipped when the one that gathers for it is in a received polygon.
       const std::vector<VertexCopy>& copies = shared.copies[p];
@@ -116,7 +119,7 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
         }
         VertexState& x = vs[v];
         const VertexRays rays = kept ? vertex_rays(*kept, w.receiver, v) : VertexRays{};
-        const Vec3 at = s.buried.gather_point(p, v, mesh.positions[v]);
+        const Vec3 at = s.scene.buried.gather_point(p, v, mesh.positions[v]);
         const Vec3 dh =
             gather_from_source(at, n, centroid, src, vis, own, sc, kept ? &rays : nullptr);
         x.receive(dh, rho, major, at == mesh.positions[v]);
@@ -126,14 +129,15 @@ void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityB
   // The shared vertices take the gain of the one that gathered for them (same Pure: same rho).
   tbb::parallel_for(size_t(0), receivers.size(), [&](size_t i) {
     const uint32_t p = receivers[i];
-    std::vector<VertexState>& vs = s.vertex_states[p];
-    const Vec3 rho = s.material_of(p).reflectance;
+    std::vector<VertexState>& vs = s.solution.vertex_states[p];
+    const Vec3 rho = s.solution.material_of(p).reflectance;
     for (const VertexCopy& c : shared.copies[p]) {
       if (!received[c.from_polygon]) continue;
-      const Vec3 dh = s.vertex_states[c.from_polygon][c.from_vertex].shot;
-      vs[c.vertex].receive(dh, rho, major, !s.buried.is_moved(c.from_polygon, c.from_vertex));
+      const Vec3 dh = s.solution.vertex_states[c.from_polygon][c.from_vertex].last_gain;
+      vs[c.vertex].receive(dh, rho, major, !s.scene.buried.is_moved(c.from_polygon, c.from_vertex));
     }
   });
+  return s.receivers;
 }
 
 }  // namespace rad

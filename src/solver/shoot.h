@@ -25,11 +25,12 @@ bool may_receive(const SolverState& s, size_t p, const ShotSource& src);
 
 /// Shoots `src` (whose unshot radiosity the caller has already cleared) to every vertex of every
 /// other polygon, in parallel over polygons and their vertices (TBB). Each vertex gets
-/// H += dH, unshot += rho * dH and shot = dH. The polygons that may have gained are listed in
-/// s.receivers, in index order, and marked in s.received (the others' `shot` values are stale).
-/// Statistics are summed into s.stats. With `major`, dH is also added to each vertex's `major`
-/// part.
-void shoot_to_receivers(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,
-                        bool major);
+/// H += dH, unshot += rho * dH and last_gain = dH (VertexState::receive; with `major`, dH is
+/// also added to its `major` part). Reads s.options, s.scene and s.ownership; writes the
+/// receiving vertices' states in s.solution, the kept answers (s.kept) and s.stats; returns the
+/// polygons that may have gained (s.receivers, in index order; the others' last_gain is stale),
+/// which the rest of the shot takes from the return value.
+const Receivers& shoot_to_receivers(SolverState& s, const ShotSource& src,
+                                    const VisibilityBackend& vis, bool major);
 
 }  // namespace rad

@@ -69,46 +69,48 @@ void SampleLanes::pad() {
 int sample_grid_for(const SolverState& s, float extent) {
   const float first = float(s.options.sample_grid);
   const float last = float(std::max(s.options.sample_grid, s.options.max_sample_grid));
-  const float wanted = s.max_size > 0.0f ? std::ceil(extent / s.max_size) : first;
+  const float wanted = s.scene.max_size > 0.0f ? std::ceil(extent / s.scene.max_size) : first;
   return int(std::clamp(wanted, first, last));
 }
 
 ShotSource make_shot_source(const SolverState& s, int32_t c) {
-  const Triangles& tris = s.hierarchy->triangles;
-  const Clusters& k = s.clusters;
+  const Triangles& tris = s.solution.hierarchy->triangles;
+  const Clusters& clusters = s.scene.clusters;
   const size_t ci = size_t(c);
   ShotSource src;
   src.cluster = c;
-  src.planar = k.planar[ci];
-  src.centroid = k.centroid[ci], src.axis = k.axis[ci];
-  src.cone_cos = k.cone_cos[ci], src.cone_sin = k.cone_sin[ci];
-  src.offset_lo = k.offset_lo[ci], src.offset_hi = k.offset_hi[ci];
-  src.box = k.box[ci];
-  src.area = k.area[ci];
-  src.extent = k.extent[ci];
-  src.edge_a.assign(k.edge_a.begin() + k.edge_first[ci], k.edge_a.begin() + k.edge_first[ci + 1]);
-  src.edge_b.assign(k.edge_b.begin() + k.edge_first[ci], k.edge_b.begin() + k.edge_first[ci + 1]);
-  src.interior.assign(k.interior.begin() + k.interior_first[ci],
-                      k.interior.begin() + k.interior_first[ci + 1]);
+  src.planar = clusters.planar[ci];
+  src.centroid = clusters.centroid[ci], src.axis = clusters.axis[ci];
+  src.cone_cos = clusters.cone_cos[ci], src.cone_sin = clusters.cone_sin[ci];
+  src.offset_lo = clusters.offset_lo[ci], src.offset_hi = clusters.offset_hi[ci];
+  src.box = clusters.box[ci];
+  src.area = clusters.area[ci];
+  src.extent = clusters.extent[ci];
+  src.edge_a.assign(clusters.edge_a.begin() + clusters.edge_first[ci],
+                    clusters.edge_a.begin() + clusters.edge_first[ci + 1]);
+  src.edge_b.assign(clusters.edge_b.begin() + clusters.edge_first[ci],
+                    clusters.edge_b.begin() + clusters.edge_first[ci + 1]);
+  src.interior.assign(clusters.interior.begin() + clusters.interior_first[ci],
+                      clusters.interior.begin() + clusters.interior_first[ci + 1]);
 
   const int m = sample_grid_for(s, src.extent);
   const uint32_t n = uint32_t(m * m);
   // Fine points: each triangle cut into q x q by a regular barycentric grid, q the least that
   // makes its pieces no bigger than A / (16 n) (a single triangle gets the (4m)^2 grid).
   std::vector<FinePoint> fine;
-  const int max_q = int(s.barycentric_grids.size()) - 1;
-  for (uint32_t j = k.first[ci]; j < k.first[ci + 1]; ++j) {
-    const uint32_t t = k.polygons[j];
+  const int max_q = int(s.scene.barycentric_grids.size()) - 1;
+  for (uint32_t j = clusters.first[ci]; j < clusters.first[ci + 1]; ++j) {
+    const uint32_t t = clusters.polygons[j];
     const float share = float(kFinePerSample) * float(n) * tris.area[t] / src.area;
     const int q = std::clamp(int(std::ceil(std::sqrt(share) - 1e-4f)), 1, max_q);
     const float piece = tris.area[t] / float(q * q);
     const auto& c3 = tris.corners[t];
-    for (const Vec3& w : s.barycentric_grids[size_t(q)]) {
-      fine.push_back(
-          {c3[0] * w.x + c3[1] * w.y + c3[2] * w.z, tris.normal[t],
-           interpolate_at(
-               s.mesh.polygons[t], [&](uint32_t v) { return s.vertex_states[t][v].unshot; }, w),
-           piece});
+    for (const Vec3& w : s.scene.barycentric_grids[size_t(q)]) {
+      fine.push_back({c3[0] * w.x + c3[1] * w.y + c3[2] * w.z, tris.normal[t],
+                      interpolate_at(
+                          s.solution.mesh.polygons[t],
+                          [&](uint32_t v) { return s.solution.vertex_states[t][v].unshot; }, w),
+                      piece});
     }
   }
   const uint32_t strata = std::min<uint32_t>(n, uint32_t(fine.size()));
@@ -150,7 +152,7 @@ ShotSource make_shot_source(const SolverState& s, int32_t c) {
     const DVec3 nm = normal[g] / std::max(glm::length(normal[g]), 1e-30);
     src.sample.push_back(Vec3(centre[g] / area[g]), Vec3(nm), float(area[g]), u);
     mean += unshot[g];
-    const Vec3 end = off_surface(p.position, p.normal, s.shadow_offset);
+    const Vec3 end = off_surface(p.position, p.normal, s.scene.shadow_offset);
     src.end_x.push_back(end.x), src.end_y.push_back(end.y), src.end_z.push_back(end.z);
   }
   src.sample_count = strata;
@@ -196,16 +198,16 @@ float top_of(const ShotSource& src, const Aabb& b) {
 }
 }  // namespace
 
-bool ShotSource::roulette_reaches(const Aabb& b) const {
+bool ShotSource::roulette_reaches_box(const Aabb& b) const {
   return reaches(*this, b, top_of(*this, b), std::numeric_limits<float>::infinity());
 }
 
-bool ShotSource::roulette_reaches(const Aabb& b, const Vec3& corner, const Vec3& n) const {
+bool ShotSource::roulette_reaches_triangle(const Aabb& b, const Vec3& corner, const Vec3& n) const {
   // Every point of a flat triangle has the same tangent plane.
   return reaches(*this, b, top_of(*this, b), facing(corner, n));
 }
 
-bool ShotSource::roulette_within(const Aabb& b) const {
+bool ShotSource::roulette_distance_reaches(const Aabb& b) const {
   // reaches() with both cosines 1, without its square roots: the occluders chosen for a shot
   // are all looked at this way, every shot.
   if (!(roulette_draw > 0.0f)) return true;

@@ -101,12 +101,12 @@ struct ShotSource {
     return q >= 1.0f ? 1.0f : (q > roulette_draw ? 1.0f / q : 0.0f);
   }
   /// False when no point of `b` gathers (roulette_weight is 0 throughout, whatever its normal).
-  bool roulette_reaches(const Aabb& b) const;
+  bool roulette_reaches_box(const Aabb& b) const;
   /// False when no point of a triangle (its box `b`, a corner, its normal `n`) gathers.
-  bool roulette_reaches(const Aabb& b, const Vec3& corner, const Vec3& n) const;
+  bool roulette_reaches_triangle(const Aabb& b, const Vec3& corner, const Vec3& n) const;
   /// False when every point of `b` is farther from the source than its reach at any height and
   /// facing (the roulette's bound on distance alone).
-  bool roulette_within(const Aabb& b) const;
+  bool roulette_distance_reaches(const Aabb& b) const;
   /// How far x lies above a planar source's plane (+inf for a curved one).
   float height(const Vec3& x) const {
     return planar ? glm::dot(x - centroid, axis) : std::numeric_limits<float>::infinity();
@@ -116,7 +116,8 @@ struct ShotSource {
 };
 
 /// How far the point a gain is evaluated at may lie from its vertex, in extents of the vertex's
-/// triangle: box tests (roulette_reaches) grow their bound by as much.
+/// triangle: box tests (roulette_reaches_box, roulette_reaches_triangle) grow their bound by as
+/// much.
 inline constexpr float kRouletteSlack = 1e-3f;
 
 /// The number of samples per side m (n = m * m) a source of box diagonal `extent` gets: the

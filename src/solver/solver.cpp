@@ -44,10 +44,10 @@ struct ExpectedCost {
 
   explicit ExpectedCost(const SolverState& state) : s(state) {
     std::array<double, 64> sum{}, count{};
-    for (size_t c = 0; c < s.cluster_cost.size(); ++c) {
-      if (!(s.cluster_cost[c] > 0.0)) continue;
-      const size_t b = area_bin(s.clusters.area[c]);
-      sum[b] += s.cluster_cost[c], count[b] += 1.0;
+    for (size_t c = 0; c < s.shots.cluster_cost.size(); ++c) {
+      if (!(s.shots.cluster_cost[c] > 0.0)) continue;
+      const size_t b = area_bin(s.scene.clusters.area[c]);
+      sum[b] += s.shots.cluster_cost[c], count[b] += 1.0;
     }
     double all = 0.0, shot = 0.0;
     for (size_t b = 0; b < 64; ++b) {
@@ -58,8 +58,8 @@ struct ExpectedCost {
   }
 
   double operator()(size_t c) const {
-    double known = c < s.cluster_cost.size() ? s.cluster_cost[c] : 0.0;
-    if (!(known > 0.0)) known = bin_mean[area_bin(s.clusters.area[c])];
+    double known = c < s.shots.cluster_cost.size() ? s.shots.cluster_cost[c] : 0.0;
+    if (!(known > 0.0)) known = bin_mean[area_bin(s.scene.clusters.area[c])];
     if (!(known > 0.0)) known = mean;
     return known + kShotOverhead;
   }
@@ -83,28 +83,29 @@ std::optional<Shooter> choose_shooter(const SolverState& s) {
   // held overshoot of all of them grows: a furnished room ended with 42% of its energy unshot
   // after 900 shots.) Its share is what it expects back: the ambient times its retention.
   const bool overshoot = s.options.overshoot;
-  const double amb = overshoot ? ambient_estimate(s) : 0.0;
+  const double amb = overshoot ? ambient_estimate(s.energy) : 0.0;
   const ExpectedCost expected_cost(s);
-  const Clusters& k = s.clusters;
+  const Clusters& clusters = s.scene.clusters;
   // Mostly a pass over the clusters, not the polygons (ClusterUnshot).
   auto shooting = [&](size_t c) {
-    return overshoot ? cluster_shooting_energy(s, c, amb * retention(s, c))
-                     : s.cluster_unshot[c].magnitude;
+    return overshoot ? cluster_shooting_energy(s.energy, s.solution, s.scene.clusters, c,
+                                               amb * retention(s.energy, c))
+                     : s.energy.cluster_unshot[c].magnitude;
   };
   using Best = std::pair<double, int32_t>;  // (score, -index): the larger wins, ties lowest
   const Best found = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, k.size(), 256), Best{0.0, 1},
+      tbb::blocked_range<size_t>(0, clusters.size(), 256), Best{0.0, 1},
       [&](const tbb::blocked_range<size_t>& r, Best b) {
         for (size_t c = r.begin(); c != r.end(); ++c) {
-          if (!s.owns_cluster(c)) continue;
+          if (!s.ownership.owns_cluster(c)) continue;
           const double cost = expected_cost(c);
           // What a cluster shoots is at most its magnitude plus its share of the ambient (each
           // polygon's |u + r a| + m - |u| <= m + r |a|), with room for the sums' rounding: one
           // that cannot win even so is passed over without its polygons (the same choice).
           if (overshoot) {
-            const ClusterUnshot& u = s.cluster_unshot[c];
+            const ClusterUnshot& u = s.energy.cluster_unshot[c];
             const double most =
-                (u.magnitude + u.rho_area * std::abs(amb) * retention(s, c)) * (1.0 + 1e-9);
+                (u.magnitude + u.rho_area * std::abs(amb) * retention(s.energy, c)) * (1.0 + 1e-9);
             if (Best{most / cost, -int32_t(c)} < b) continue;
           }
           const double e = shooting(c);
@@ -116,10 +117,11 @@ std::optional<Shooter> choose_shooter(const SolverState& s) {
       [](const Best& a, const Best& b) { return std::max(a, b); });
   double best_score = found.first;
   int32_t best = found.first > 0.0 ? -found.second : -1;
-  if (s.ranks) std::tie(best_score, best) = s.ranks->max_location(best_score, best);
+  if (s.ownership.ranks)
+    std::tie(best_score, best) = s.ownership.ranks->max_location(best_score, best);
   if (best < 0 || !(best_score > 0.0)) return std::nullopt;
   // The owner freezes it (the others hold none of its unshot energy).
-  return Shooter{best, s.owns_cluster(size_t(best)) ? shooting(size_t(best)) : 0.0};
+  return Shooter{best, s.ownership.owns_cluster(size_t(best)) ? shooting(size_t(best)) : 0.0};
 }
 
 namespace {
@@ -127,7 +129,7 @@ namespace {
 // Clears cluster c's unshot radiosity into the source of the next shot; `shot` is set to the
 // energy it shoots (mean over the channels, signed).
 ShotSource freeze_source(SolverState& s, size_t c, double energy, double& shot) {
-  const Clusters& k = s.clusters;
+  const Clusters& clusters = s.scene.clusters;
   // Overshooting (Feda, Purgathofer 1992): also shoot what the source will get back from the
   // ambient; its unshot radiosity becomes that much negative, shot later if still significant.
   // It gets back only as much as its shots land (retention): else a lamp alone in the void,
@@ -136,14 +138,15 @@ ShotSource freeze_source(SolverState& s, size_t c, double energy, double& shot) 
   Vec3 over(0.0f);
   const bool overshoot = s.options.overshoot;
   if (overshoot) {
-    over = s.material_of(k.polygons[k.first[c]]).reflectance *
-           float(double(ambient_estimate(s)) * retention(s, c));
+    over = s.solution.material_of(clusters.polygons[clusters.first[c]]).reflectance *
+           float(double(ambient_estimate(s.energy)) * retention(s.energy, c));
   }
   shot = 0.0;
-  for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) shot += s.unshot_energy[k.polygons[j]].sum;
+  for (uint32_t j = clusters.first[c]; j < clusters.first[c + 1]; ++j)
+    shot += s.energy.unshot_energy[clusters.polygons[j]].sum;
   auto set_unshot = [&](const Vec3& add, bool assign) {
-    for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) {
-      for (VertexState& v : s.vertex_states[k.polygons[j]]) {
+    for (uint32_t j = clusters.first[c]; j < clusters.first[c + 1]; ++j) {
+      for (VertexState& v : s.solution.vertex_states[clusters.polygons[j]]) {
         v.unshot = assign ? add : v.unshot + add;
       }
     }
@@ -152,17 +155,20 @@ ShotSource freeze_source(SolverState& s, size_t c, double energy, double& shot) 
   ShotSource src = make_shot_source(s, int32_t(c));
   set_unshot(-over, true);
   std::vector<UnshotEnergy> left;
-  for (uint32_t j = k.first[c]; j < k.first[c + 1]; ++j) {
-    left.push_back(overshoot ? polygon_unshot_energy(s, k.polygons[j]) : UnshotEnergy{});
+  for (uint32_t j = clusters.first[c]; j < clusters.first[c + 1]; ++j) {
+    left.push_back(overshoot ? polygon_unshot_energy(s.solution, clusters.polygons[j])
+                             : UnshotEnergy{});
   }
-  set_unshot_energies(s, {k.polygons.data() + k.first[c], left.size()}, left);
+  set_unshot_energies(s.energy, s.solution, s.scene.clusters,
+                      {clusters.polygons.data() + clusters.first[c], left.size()}, left);
   for (const UnshotEnergy& e : left) shot -= e.sum;
 
   src.major = s.options.major_shot_fraction > 0.0 &&
-              energy >= s.options.major_shot_fraction * s.reference_energy;
+              energy >= s.options.major_shot_fraction * s.energy.reference_energy;
   // A major shot lights every receiver it may: its part is gathered again at new vertices and
   // holds the sharp shadows.
-  if (!src.major) aim_roulette(src, s.options.roulette * s.radiosity_scale, s.shots + 1);
+  if (!src.major)
+    aim_roulette(src, s.options.roulette * s.energy.radiosity_scale, s.shots.count + 1);
   return src;
 }
 
@@ -171,23 +177,24 @@ ShotSource freeze_source(SolverState& s, size_t c, double energy, double& shot) 
 // against what it shot, `shot` signed and `magnitude` as chosen (each the owner's figure, 0 on
 // other ranks). Summed exactly and added in shot order: every rank sets the same bits.
 void measure_retention(SolverState& s, size_t c, double shot, double magnitude,
-                       std::span<const double> absorbed, std::span<const UnshotEnergy> unshot) {
-  const std::vector<uint32_t>& receivers = s.receivers;
+                       std::span<const uint32_t> receivers, std::span<const double> absorbed,
+                       std::span<const UnshotEnergy> unshot) {
   std::vector<double> landed(receivers.size());
   for (size_t i = 0; i < receivers.size(); ++i)
-    landed[i] = absorbed[i] + (unshot[i].sum - s.unshot_energy[receivers[i]].sum);
+    landed[i] = absorbed[i] + (unshot[i].sum - s.energy.unshot_energy[receivers[i]].sum);
   const double mine[2] = {shot, magnitude};
   const std::span<const double> terms[3] = {landed, {mine, 1}, {mine + 1, 1}};
   double sums[3];
-  exact_energy_sums(s, terms, sums);
+  exact_energy_sums(s.energy, s.ownership.ranks, terms, sums);
   // Channels of opposite signs (after an edit) leave a signed energy that says little of what
   // was shot: the last retention stands.
   if (!(std::abs(sums[1]) >= 0.5 * sums[2] && sums[2] > 0.0)) return;
-  if (s.cluster_balance.size() < s.clusters.size()) s.cluster_balance.resize(s.clusters.size());
-  ShotBalance& b = s.cluster_balance[c];
+  if (s.energy.cluster_balance.size() < s.scene.clusters.size())
+    s.energy.cluster_balance.resize(s.scene.clusters.size());
+  ShotBalance& b = s.energy.cluster_balance[c];
   b.shot += std::abs(sums[1]);
   b.landed += sums[1] > 0.0 ? sums[0] : -sums[0];
-  set_retention(s, c, b.retention());
+  set_retention(s.energy, s.solution, s.scene.clusters, c, b.retention());
 }
 
 }  // namespace
@@ -196,13 +203,13 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   const auto t0 = std::chrono::steady_clock::now();
   // Before the first shot (or the first after a checkpoint was restored): a backend is at hand.
   // Without shadows nothing blocks a buried vertex's view, and it gathers where it is.
-  if (!s.buried.found) {
+  if (!s.scene.buried.found) {
     if (s.options.shadows) {
-      s.buried = find_all_buried_vertices(s.hierarchy->triangles, s.mesh, vis, buried_probe(s),
-                                          s.stats.rays);
+      s.scene.buried = find_all_buried_vertices(s.solution.hierarchy->triangles, s.solution.mesh,
+                                                vis, buried_probe(s.scene), s.stats.rays);
     } else {
-      s.buried.moved.assign(s.mesh.polygons.size(), {});
-      s.buried.found = true;
+      s.scene.buried.moved.assign(s.solution.mesh.polygons.size(), {});
+      s.scene.buried.found = true;
     }
   }
   const std::optional<Shooter> shooter = choose_shooter(s);
@@ -213,22 +220,24 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   // shares it with the other ranks.
   ShotSource src;
   double shot = 0.0;  // its energy, signed (the owner's figure; 0 on the other ranks)
-  if (s.owns_cluster(c)) src = freeze_source(s, c, shooter->energy, shot);
-  if (s.ranks) share_shot_source(s, src, s.cluster_owner[c]);
+  if (s.ownership.owns_cluster(c)) src = freeze_source(s, c, shooter->energy, shot);
+  if (s.ownership.ranks) {
+    share_shot_source(*s.ownership.ranks, s.scene.clusters.size(), src,
+                      s.ownership.cluster_owner[c]);
+  }
   const bool major = src.major;
-  shoot_to_receivers(s, src, vis, major);
+  const std::vector<uint32_t>& receivers = shoot_to_receivers(s, src, vis, major).polygons;
   const auto t1 = std::chrono::steady_clock::now();
 
   // Bookkeeping per received polygon: the energy it absorbed and the energy it holds unshot,
   // summed in index order so the result does not depend on the thread count. One look at each
   // receiver also says whether it needs refining (most of a large scene's do not); those
   // refined are counted again after.
-  const std::vector<uint32_t>& receivers = s.receivers;
   std::vector<double> absorbed(receivers.size(), 0.0);
   std::vector<UnshotEnergy> unshot(receivers.size());
   std::vector<uint8_t> refining(receivers.size(), 0);
   auto count = [&](size_t i) {
-    const PolygonEnergies e = polygon_energies(s, receivers[i]);
+    const PolygonEnergies e = polygon_energies(s.solution, receivers[i]);
     absorbed[i] = e.absorbed;
     unshot[i] = e.unshot;
   };
@@ -236,10 +245,10 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
     // A receiver that gained nothing (every ray blocked: most of those behind a building's
     // walls that culling could not prove hidden) holds what it held and needs no more refining
     // than after its last change.
-    const std::vector<VertexState>& vs = s.vertex_states[receivers[i]];
+    const std::vector<VertexState>& vs = s.solution.vertex_states[receivers[i]];
     if (std::all_of(vs.begin(), vs.end(),
-                    [](const VertexState& v) { return v.shot == Vec3(0.0f); })) {
-      unshot[i] = s.unshot_energy[receivers[i]];
+                    [](const VertexState& v) { return v.last_gain == Vec3(0.0f); })) {
+      unshot[i] = s.energy.unshot_energy[receivers[i]];
       return;
     }
     count(i);
@@ -250,28 +259,29 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
     if (refining[i]) refined.push_back(uint32_t(i)), to_refine.push_back(receivers[i]);
   }
   refine_after_shot(s, src, vis, major, to_refine);
-  if (src.major || s.options.log_minor_shots) s.shot_log.push_back(std::move(src));
+  if (src.major || s.options.log_minor_shots) s.shots.sources.push_back(std::move(src));
   tbb::parallel_for(size_t(0), refined.size(), [&](size_t j) { count(refined[j]); });
-  measure_retention(s, c, shot, s.owns_cluster(c) ? shooter->energy : 0.0, absorbed, unshot);
-  for (double a : absorbed) s.absorbed_energy += a;
+  measure_retention(s, c, shot, s.ownership.owns_cluster(c) ? shooter->energy : 0.0, receivers,
+                    absorbed, unshot);
+  for (double a : absorbed) s.energy.absorbed_energy += a;
   // The totals and the clusters' energies follow the polygons the shot changed, not the scene.
-  set_unshot_energies(s, receivers, unshot);
-  share_unshot_totals(s);
+  set_unshot_energies(s.energy, s.solution, s.scene.clusters, receivers, unshot);
+  share_unshot_totals(s.energy, s.ownership.ranks);
   const auto t2 = std::chrono::steady_clock::now();
   s.stats.shoot_seconds += std::chrono::duration<double>(t1 - t0).count();
   s.stats.refine_seconds += std::chrono::duration<double>(t2 - t1).count();
 
   // What this shot cost, for the next choice of shooter (over the ranks: the same on each).
   int64_t gathered = 0;
-  for (uint32_t p : receivers) gathered += int64_t(s.vertex_states[p].size());
-  if (s.ranks) s.ranks->sum(std::span<int64_t>(&gathered, 1));
-  s.cluster_cost.resize(s.clusters.size(), 0.0);
-  s.cluster_cost[c] = double(gathered);
+  for (uint32_t p : receivers) gathered += int64_t(s.solution.vertex_states[p].size());
+  if (s.ownership.ranks) s.ownership.ranks->sum(std::span<int64_t>(&gathered, 1));
+  s.shots.cluster_cost.resize(s.scene.clusters.size(), 0.0);
+  s.shots.cluster_cost[c] = double(gathered);
 
-  ++s.shots;
-  ShotRecord r{s.shots, shooter->cluster, s.stats.shoot_seconds + s.stats.refine_seconds,
-               s.unshot_fraction()};
-  s.history.push_back(r);
+  ++s.shots.count;
+  ShotRecord r{s.shots.count, shooter->cluster, s.stats.shoot_seconds + s.stats.refine_seconds,
+               s.energy.unshot_fraction()};
+  s.shots.history.push_back(r);
   return r;
 }
 
@@ -294,8 +304,8 @@ const char* to_string(StopReason r) {
 }
 
 std::optional<StopReason> goal_reached(const SolverState& s) {
-  if (s.unshot_fraction() <= s.options.converge) return StopReason::Converged;
-  if (s.options.max_shots >= 0 && s.shots >= s.options.max_shots) return StopReason::MaxShots;
+  if (s.energy.unshot_fraction() <= s.options.converge) return StopReason::Converged;
+  if (s.options.max_shots >= 0 && s.shots.count >= s.options.max_shots) return StopReason::MaxShots;
   return std::nullopt;
 }
 
@@ -313,8 +323,8 @@ StopReason solve(SolverState& s, const VisibilityBackend& vis,
       why = StopReason::TimeLimit;
     }
     // The ranks stop together: any rank's reason (a signal, its clock, its memory) stops all.
-    if (s.ranks) {
-      const int64_t agreed = s.ranks->max(why ? int64_t(*why) + 1 : 0);
+    if (s.ownership.ranks) {
+      const int64_t agreed = s.ownership.ranks->max(why ? int64_t(*why) + 1 : 0);
       why = agreed > 0 ? std::optional(StopReason(agreed - 1)) : std::nullopt;
     }
     if (why) return *why;

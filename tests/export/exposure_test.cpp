@@ -15,7 +15,7 @@ std::vector<Vec3> lit_room() {
 
 SolverState with_emission(Vec3 e) {
   SolverState s;
-  s.materials = {Material{Vec3(0.5f), Vec3(0.0f)}, Material{Vec3(0.0f), e}};
+  s.solution.materials = {Material{Vec3(0.5f), Vec3(0.0f)}, Material{Vec3(0.0f), e}};
   return s;
 }
 

@@ -18,7 +18,7 @@ void expect_same_as_a_whole_build(const OutputMeshBuilder& builder, const MeshGe
   EXPECT_EQ(g.indices, want.indices());
   EXPECT_EQ(g.face_polygon, want.face_polygon());
   std::vector<Vec3> radiosity, display;
-  builder.values(s, ambient_radiosity(s), radiosity, display);
+  builder.values(s, ambient_radiosity(s.energy, s.solution), radiosity, display);
   EXPECT_EQ(radiosity, want.radiosity);
   EXPECT_EQ(display, want.display);
 }
@@ -57,7 +57,7 @@ TEST(OutputMesh, DisplayAddsTheAmbientTermTimesReflectanceOnlyWhenAsked) {
   const OutputMesh plain = make_output_mesh(s, false), lifted = make_output_mesh(s, true);
   EXPECT_EQ(plain.display, plain.radiosity);
   EXPECT_EQ(lifted.radiosity, plain.radiosity);
-  const Vec3 ambient = ambient_radiosity(s);
+  const Vec3 ambient = ambient_radiosity(s.energy, s.solution);
   ASSERT_GT(max_component(ambient), 0.0f);
   for (size_t v = 0; v < plain.radiosity.size(); ++v) {
     EXPECT_GT(max_component(lifted.display[v] - plain.display[v]), 0.0f) << "vertex " << v;

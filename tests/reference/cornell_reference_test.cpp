@@ -36,7 +36,7 @@ TEST(CornellReference, DefaultSolveWithinOnePercentMeanOfPathTracedReference) {
       compare_to_reference({mesh.position(), mesh.radiosity, mesh.indices(), mesh.face_polygon()},
                            reference, emitting_polygons(h));
   std::printf("rad (default options, Embree): %s after %lld shots, %zu faces, %.1f s\n",
-              to_string(stop), (long long)state.shots, mesh.face_count(), seconds);
+              to_string(stop), (long long)state.shots.count, mesh.face_count(), seconds);
   std::fputs(format_report(r).c_str(), stdout);
   // Every point, for looking at where the error is.
   const std::string dump = std::string(RAD_BINARY_DIR) + "/cornell_reference_points.csv";
@@ -76,7 +76,7 @@ TEST(CornellReference, TessellatedBoxKeepsTheAnswer) {
       compare_to_reference({mesh.position(), mesh.radiosity, mesh.indices(), face_polygon},
                            reference, emitting_polygons(uncut));
   std::printf("Cornell box cut 4 x 4 (%zu triangles): %lld shots\n", h.triangles.size(),
-              (long long)state.shots);
+              (long long)state.shots.count);
   std::fputs(format_report(r).c_str(), stdout);
   EXPECT_EQ(r.outside, 0u);
   EXPECT_LE(r.reflecting.mean_error, 0.01);

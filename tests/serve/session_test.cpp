@@ -52,12 +52,13 @@ void expect_consistent(const Snapshot& s) {
 double worst_corner_difference(const SolverState& a, const SolverState& b) {
   double mean = 0.0, worst = 0.0;
   int n = 0;
-  for (size_t p = 0; p < a.mesh.polygons.size(); ++p) {
+  for (size_t p = 0; p < a.solution.mesh.polygons.size(); ++p) {
     for (uint32_t v = 0; v < 3; ++v) {
-      mean += mean_component(b.radiosity(p, v));
+      mean += mean_component(b.solution.radiosity(p, v));
       ++n;
-      worst =
-          std::max(worst, double(max_component(glm::abs(a.radiosity(p, v) - b.radiosity(p, v)))));
+      worst = std::max(
+          worst,
+          double(max_component(glm::abs(a.solution.radiosity(p, v) - b.solution.radiosity(p, v)))));
     }
   }
   return worst / (mean / n);
@@ -165,7 +166,7 @@ TEST_F(SessionTest, PartialEditsCombineAndShowInTheNextSnapshot) {
   ASSERT_TRUE(snap);
   EXPECT_NE(snap->notice.find("'left'"), std::string::npos) << snap->notice;
   s.stop();
-  EXPECT_EQ(s.state().materials[size_t(left)].reflectance, Vec3(0.0f, 0.4f, 0.0f));
+  EXPECT_EQ(s.state().solution.materials[size_t(left)].reflectance, Vec3(0.0f, 0.4f, 0.0f));
 }
 
 TEST_F(SessionTest, PauseStopsShootingAndResumeContinues) {

@@ -30,10 +30,11 @@ template <typename F>
 void for_each_vertex_of(const Solved& r, const std::string& name, F&& f) {
   for (size_t p = 0; p < r.h.triangles.size(); ++p) {
     if (r.h.objects[size_t(r.h.triangles.object[p])].name != name) continue;
-    const PolygonMesh& m = r.s.mesh.polygons[p];
+    const PolygonMesh& m = r.s.solution.mesh.polygons[p];
     const Vec3 centroid = (m.positions[0] + m.positions[1] + m.positions[2]) / 3.0f;
     for (uint32_t v = 0; v < m.vertex_count(); ++v) {
-      f(m.positions[v], r.s.radiosity(p, v), m.positions[v] + (centroid - m.positions[v]) * 1e-4f);
+      f(m.positions[v], r.s.solution.radiosity(p, v),
+        m.positions[v] + (centroid - m.positions[v]) * 1e-4f);
     }
   }
 }
@@ -126,14 +127,14 @@ TEST_P(AnalyticScenes, VertexInFullUmbraGetsZero) {
   const auto r = solve_scene(d, GetParam());
   // Polygon corners are computed exactly: 0. Midpoints added by subdivision on edges within the
   // limit are interpolated from their ends (design §5), so they may hold up to half the limit.
-  const float limit = r->s.options.subdivision_threshold * r->s.radiosity_scale;
+  const float limit = r->s.options.subdivision_threshold * r->s.energy.radiosity_scale;
   int umbra_corners = 0, lit = 0;
   for (size_t p = 0; p < r->h.triangles.size(); ++p) {
     if (r->h.objects[size_t(r->h.triangles.object[p])].name != "floor") continue;
-    const PolygonMesh& m = r->s.mesh.polygons[p];
+    const PolygonMesh& m = r->s.solution.mesh.polygons[p];
     for (uint32_t v = 0; v < m.vertex_count(); ++v) {
       const Vec3 q = m.positions[v];
-      const float b = r->s.radiosity(p, v).x;
+      const float b = r->s.solution.radiosity(p, v).x;
       if (std::max(std::abs(q.x), std::abs(q.y)) < 0.75f) {
         if (v < 3) {
           ++umbra_corners;
@@ -165,7 +166,8 @@ TEST_P(AnalyticScenes, FurnaceBoxConvergesToEOverOneMinusRho) {
       worst = std::max(worst, std::abs(b.y - expected) / expected);
     });
   }
-  const double balance = (r->s.absorbed_energy + r->s.unshot_abs_total) / r->s.emitted_energy;
+  const double balance =
+      (r->s.energy.absorbed_energy + r->s.energy.unshot_abs_total) / r->s.energy.emitted_energy;
   std::printf("furnace: worst vertex error %.4f%%, (absorbed + unshot) / emitted = %.5f\n",
               100 * worst, balance);
   EXPECT_LE(worst, 0.005);

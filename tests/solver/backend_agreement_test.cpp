@@ -64,10 +64,10 @@ Solved solve_with(const Hierarchy& h, BackendKind kind, int shots) {
   SolverState s = make_solver_state(h, o);
   solve(s, *make_visibility_backend(kind, h));
   Solved out;
-  for (size_t p = 0; p < s.mesh.polygons.size(); ++p) {
-    out.vertices.push_back(s.mesh.polygons[p].vertex_count());
-    for (uint32_t v = 0; v < s.mesh.polygons[p].vertex_count(); ++v)
-      out.radiosity.push_back(s.radiosity(p, v));
+  for (size_t p = 0; p < s.solution.mesh.polygons.size(); ++p) {
+    out.vertices.push_back(s.solution.mesh.polygons[p].vertex_count());
+    for (uint32_t v = 0; v < s.solution.mesh.polygons[p].vertex_count(); ++v)
+      out.radiosity.push_back(s.solution.radiosity(p, v));
   }
   return out;
 }

@@ -85,7 +85,7 @@ TEST(BuriedVerticesAgreement, EveryBackendMovesTheVerticesAlike) {
     add_solid_box(d, "panel", {0.98f, -0.5f, -0.5f}, {1.02f, 1.5f, 0.5f});
     add_solid_box(d, "leg", {-0.01f, -0.01f, -0.5f}, {0.03f, 0.03f, 0.02f});
   });
-  const Mesh mesh = make_solver_state(h, {}).mesh;
+  const Mesh mesh = make_solver_state(h, {}).solution.mesh;
   std::vector<BuriedVertices> found;
   for (BackendKind k : {BackendKind::Embree, BackendKind::Grid, BackendKind::Brute}) {
     const auto vis = make_visibility_backend(k, h);
@@ -120,10 +120,10 @@ TEST_P(BuriedVertexTest, ASunkCornerGathersWhatTheBoardGetsBesideTheSolid) {
   o.max_shots = 1;
   SolverState s = make_solver_state(h, o);
   solve(s, *vis);
-  const PolygonMesh& m = s.mesh.polygons[0];
+  const PolygonMesh& m = s.solution.mesh.polygons[0];
   // Triangle 0 is (0,0) (1,0) (1,1): vertices 1 and 2 lie in the panel.
-  const float sunk = s.vertex_states[0][1].irradiance.x;
-  const float open = s.vertex_states[0][0].irradiance.x;
+  const float sunk = s.solution.vertex_states[0][1].irradiance.x;
+  const float open = s.solution.vertex_states[0][0].irradiance.x;
   EXPECT_GT(m.positions[1].x, 0.995f);
   EXPECT_GT(open, 0.05f);
   EXPECT_GT(sunk, 0.5f * open) << "a corner inside the panel gathers as if outside it";

@@ -29,9 +29,9 @@ Hierarchy lit_box() {
 // Every vertex's position and state, as bytes.
 std::string all_vertices(const SolverState& s) {
   std::string v;
-  for (size_t p = 0; p < s.mesh.polygons.size(); ++p) {
-    const std::vector<Vec3>& x = s.mesh.polygons[p].positions;
-    const std::vector<VertexState>& st = s.vertex_states[p];
+  for (size_t p = 0; p < s.solution.mesh.polygons.size(); ++p) {
+    const std::vector<Vec3>& x = s.solution.mesh.polygons[p].positions;
+    const std::vector<VertexState>& st = s.solution.vertex_states[p];
     v.append(reinterpret_cast<const char*>(x.data()), x.size() * sizeof(Vec3));
     v.append(reinterpret_cast<const char*>(st.data()), st.size() * sizeof(VertexState));
   }
@@ -71,18 +71,18 @@ TEST(Checkpoint, ResumedSolveEndsBitIdenticalToAnUninterruptedOne) {
   ASSERT_EQ(id, solve_fingerprint(h, o, BackendKind::Embree));
   SolverState resumed = make_solver_state(h, o);
   read_checkpoint(file, resumed, id);
-  EXPECT_EQ(resumed.shots, 6);
+  EXPECT_EQ(resumed.shots.count, 6);
   solve(resumed, *vis);
   fs::remove(file);
 
-  ASSERT_EQ(resumed.shots, whole.shots);
-  EXPECT_EQ(resumed.absorbed_energy, whole.absorbed_energy);
+  ASSERT_EQ(resumed.shots.count, whole.shots.count);
+  EXPECT_EQ(resumed.energy.absorbed_energy, whole.energy.absorbed_energy);
   const auto a = all_vertices(whole), b = all_vertices(resumed);
   ASSERT_EQ(a.size(), b.size());
   EXPECT_TRUE(a == b);
-  ASSERT_EQ(resumed.history.size(), whole.history.size());
-  for (size_t i = 0; i < whole.history.size(); ++i) {
-    EXPECT_EQ(resumed.history[i].source, whole.history[i].source) << "shot " << i + 1;
+  ASSERT_EQ(resumed.shots.history.size(), whole.shots.history.size());
+  for (size_t i = 0; i < whole.shots.history.size(); ++i) {
+    EXPECT_EQ(resumed.shots.history[i].source, whole.shots.history[i].source) << "shot " << i + 1;
   }
 }
 
@@ -93,7 +93,7 @@ TEST(Checkpoint, EqualStatesWriteEqualFiles) {
   for (const fs::path& f : {f1, f2}) {
     SolverState s = solved(h, *vis, 5);
     s.stats.shoot_seconds = s.stats.refine_seconds = 0;  // the only fields the clock sets
-    for (ShotRecord& r : s.history) r.seconds = 0;
+    for (ShotRecord& r : s.shots.history) r.seconds = 0;
     write_checkpoint(f, s, 1);
   }
   const std::string sa = read_bytes(f1), sb = read_bytes(f2);
@@ -126,7 +126,7 @@ TEST(Checkpoint, RefusesAnotherSolveADamagedFileATruncatedOneAndNoCheckpoint) {
   const auto before = all_vertices(fresh);
   auto untouched = [&] {
     const auto now = all_vertices(fresh);
-    return fresh.shots == 0 && now == before;
+    return fresh.shots.count == 0 && now == before;
   };
 
   SolverOptions other = o;
@@ -155,7 +155,7 @@ TEST(Checkpoint, RefusesAnotherSolveADamagedFileATruncatedOneAndNoCheckpoint) {
 
   write(bytes);
   EXPECT_EQ(error_of(file, fresh, id), "");
-  EXPECT_EQ(fresh.shots, 4);
+  EXPECT_EQ(fresh.shots.count, 4);
   fs::remove(file);
 }
 
@@ -169,7 +169,7 @@ TEST(Checkpoint, RefusesACopyOfACopy) {
   // Two copies; the second made to copy the first.
   const VertexCopy* first = nullptr;
   VertexCopy* second = nullptr;
-  for (auto& cs : s.shared.copies) {
+  for (auto& cs : s.scene.shared.copies) {
     for (VertexCopy& c : cs) {
       if (!first) {
         first = &c;
@@ -180,15 +180,16 @@ TEST(Checkpoint, RefusesACopyOfACopy) {
   }
   ASSERT_TRUE(first && second);
   uint32_t first_polygon = 0;
-  for (uint32_t p = 0; p < s.shared.copies.size(); ++p)
-    if (!s.shared.copies[p].empty() && &s.shared.copies[p][0] == first) first_polygon = p;
+  for (uint32_t p = 0; p < s.scene.shared.copies.size(); ++p)
+    if (!s.scene.shared.copies[p].empty() && &s.scene.shared.copies[p][0] == first)
+      first_polygon = p;
   second->from_polygon = first_polygon, second->from_vertex = first->vertex;
   const fs::path file = temp_file("rad-ckpt-chain");
   write_checkpoint(file, s, id);
   SolverState fresh = make_solver_state(h, s.options);
   EXPECT_NE(error_of(file, fresh, id).find("copied from no vertex, or from a copy"),
             std::string::npos);
-  EXPECT_EQ(fresh.shots, 0);
+  EXPECT_EQ(fresh.shots.count, 0);
   fs::remove(file);
 }
 

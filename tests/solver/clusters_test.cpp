@@ -142,19 +142,19 @@ void expect_energy_balance(int k, int shots) {
   SolverState s = make_solver_state(h, o);
   double worst = 0.0;
   for (int i = 0; i < shots; ++i) {
-    for (std::vector<VertexState>& vs : s.vertex_states)
-      for (VertexState& v : vs) v.shot = Vec3(0.0f);
+    for (std::vector<VertexState>& vs : s.solution.vertex_states)
+      for (VertexState& v : vs) v.last_gain = Vec3(0.0f);
     if (!step(s, *vis)) break;
-    const ShotSource& src = s.shot_log.back();
+    const ShotSource& src = s.shots.sources.back();
     double shot_power = 0.0;
     for (size_t j = 0; j < src.sample_count; ++j) {
       shot_power += double(src.sample.area[j]) * double(mean_component(src.sample.value(j)));
     }
     double gained = 0.0;
-    for (size_t q = 0; q < s.mesh.polygons.size(); ++q) {
-      const std::vector<VertexState>& vs = s.vertex_states[q];
+    for (size_t q = 0; q < s.solution.mesh.polygons.size(); ++q) {
+      const std::vector<VertexState>& vs = s.solution.vertex_states[q];
       for_each_leaf_vertex_sum(
-          s.mesh.polygons[q], [&](uint32_t v) { return vs[v].shot; },
+          s.solution.mesh.polygons[q], [&](uint32_t v) { return vs[v].last_gain; },
           [&](float area, Vec3 sum) {
             gained += double(area) * double(mean_component(sum)) / 3.0;
           });
@@ -189,12 +189,13 @@ TEST(Clusters, TessellatedFurnaceKeepsEOverOneMinusRho) {
   SolverState s = make_solver_state(h, {});
   solve(s, *vis);
   double area = 0.0, sum = 0.0, worst = 0.0;
-  for (size_t p = 0; p < s.mesh.polygons.size(); ++p) {
-    const PolygonMesh& m = s.mesh.polygons[p];
+  for (size_t p = 0; p < s.solution.mesh.polygons.size(); ++p) {
+    const PolygonMesh& m = s.solution.mesh.polygons[p];
     for_each_leaf(m, [&](uint32_t e) {
       const Element& el = m.elements[e];
-      const double b = double(mean_component(s.radiosity(p, el.v[0]) + s.radiosity(p, el.v[1]) +
-                                             s.radiosity(p, el.v[2]))) /
+      const double b = double(mean_component(s.solution.radiosity(p, el.v[0]) +
+                                             s.solution.radiosity(p, el.v[1]) +
+                                             s.solution.radiosity(p, el.v[2]))) /
                        3.0;
       area += el.area;
       sum += double(el.area) * b;
@@ -203,7 +204,7 @@ TEST(Clusters, TessellatedFurnaceKeepsEOverOneMinusRho) {
   }
   const double mean = sum / area;
   std::printf("furnace cut 8 x 8: %lld shots, mean %.5f (%+.3f%%), worst element %.2f%%\n",
-              (long long)s.shots, mean, 100.0 * (mean / 2.0 - 1.0), 100.0 * worst);
+              (long long)s.shots.count, mean, 100.0 * (mean / 2.0 - 1.0), 100.0 * worst);
   EXPECT_NEAR(mean, 2.0, 0.01);
   EXPECT_LE(worst, 0.02) << "the analytic scenes' worst-vertex bound";
 }
@@ -246,8 +247,8 @@ TEST(Clusters, InsideADomeTheTangentPlaneLoopIsNotMissed) {
   SolverOptions opt;
   opt.max_size = 1.0f;  // one cluster
   const SolverState s = make_solver_state(h, opt);
-  ASSERT_EQ(s.clusters.size(), 1u);
-  ASSERT_FALSE(s.clusters.planar[0]);
+  ASSERT_EQ(s.scene.clusters.size(), 1u);
+  ASSERT_FALSE(s.scene.clusters.planar[0]);
   const ShotSource src = make_shot_source(s, 0);
   const Vec3 x(0.05f, -0.97f, 0.0f), n(0.0f, 1.0f, 0.0f);
   double exact = 0.0;

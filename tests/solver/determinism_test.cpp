@@ -20,8 +20,9 @@ std::vector<Vec3> solve_cornell(BackendKind kind, int threads) {
   SolverState s = make_solver_state(h, o);
   solve(s, *vis);
   std::vector<Vec3> b;
-  for (size_t p = 0; p < s.mesh.polygons.size(); ++p) {
-    for (uint32_t v = 0; v < s.mesh.polygons[p].vertex_count(); ++v) b.push_back(s.radiosity(p, v));
+  for (size_t p = 0; p < s.solution.mesh.polygons.size(); ++p) {
+    for (uint32_t v = 0; v < s.solution.mesh.polygons[p].vertex_count(); ++v)
+      b.push_back(s.solution.radiosity(p, v));
   }
   return b;
 }
@@ -45,9 +46,9 @@ TEST(Determinism, OvershootingChoosesTheSameShootersWhateverTheThreadCount) {
     o.max_shots = 6;
     SolverState s = make_solver_state(h, o);
     solve(s, *vis);
-    EXPECT_GT(s.clusters.size(), 1000u);
+    EXPECT_GT(s.scene.clusters.size(), 1000u);
     std::vector<int32_t> out;
-    for (const ShotRecord& r : s.history) out.push_back(r.source);
+    for (const ShotRecord& r : s.shots.history) out.push_back(r.source);
     return out;
   };
   EXPECT_EQ(shooters(1), shooters(2));

@@ -49,14 +49,15 @@ int32_t object_named(const Hierarchy& h, const std::string& name) {
 double worst_difference(const SolverState& a, const SolverState& b) {
   double mean = 0, worst = 0;
   int n = 0;
-  for (size_t p = 0; p < a.mesh.polygons.size(); ++p) {
-    for (uint32_t v = 0; v < 3; ++v) mean += mean_component(b.radiosity(p, v)), ++n;
+  for (size_t p = 0; p < a.solution.mesh.polygons.size(); ++p) {
+    for (uint32_t v = 0; v < 3; ++v) mean += mean_component(b.solution.radiosity(p, v)), ++n;
   }
   mean /= n;
-  for (size_t p = 0; p < a.mesh.polygons.size(); ++p) {
+  for (size_t p = 0; p < a.solution.mesh.polygons.size(); ++p) {
     for (uint32_t v = 0; v < 3; ++v) {
-      worst =
-          std::max(worst, double(max_component(glm::abs(a.radiosity(p, v) - b.radiosity(p, v)))));
+      worst = std::max(
+          worst,
+          double(max_component(glm::abs(a.solution.radiosity(p, v) - b.solution.radiosity(p, v)))));
     }
   }
   return worst / mean;
@@ -70,11 +71,12 @@ double edit_then_continue(const std::string& object, const Material& m, Vec3 lam
   const auto base_vis = make_visibility_backend(BackendKind::Embree, base_h);
   SolverState edited = make_solver_state(base_h, options());
   solve(edited, *base_vis);
-  const int64_t shots_before = edited.shots;
+  const int64_t shots_before = edited.shots.count;
   set_material(edited, object_named(base_h, object), m, *base_vis);
-  EXPECT_GT(edited.unshot_fraction(), options().converge) << "the edit must leave work to do";
+  EXPECT_GT(edited.energy.unshot_fraction(), options().converge)
+      << "the edit must leave work to do";
   solve(edited, *base_vis);
-  EXPECT_GT(edited.shots, shots_before);
+  EXPECT_GT(edited.shots.count, shots_before);
 
   const Hierarchy fresh_h = build_hierarchy(edit_scene(lamp, left, black));
   const auto fresh_vis = make_visibility_backend(BackendKind::Embree, fresh_h);
@@ -105,17 +107,18 @@ TEST(Edits, TurningTheOnlyLightOffShootsItsLightBackOutToDarkness) {
   SolverState s = make_solver_state(h, options());
   solve(s, *vis);
   double lit = 0.0;
-  for (size_t p = 0; p < s.mesh.polygons.size(); ++p) lit += mean_component(s.radiosity(p, 0));
+  for (size_t p = 0; p < s.solution.mesh.polygons.size(); ++p)
+    lit += mean_component(s.solution.radiosity(p, 0));
   ASSERT_GT(lit, 0.0);
-  const int64_t shots_before = s.shots;
+  const int64_t shots_before = s.shots.count;
   set_material(s, object_named(h, "lamp"), {Vec3(0.5f), Vec3(0.0f)}, *vis);
-  EXPECT_GT(s.unshot_fraction(), options().converge) << "the edit must leave work to do";
+  EXPECT_GT(s.energy.unshot_fraction(), options().converge) << "the edit must leave work to do";
   EXPECT_EQ(solve(s, *vis), StopReason::Converged);
-  EXPECT_GT(s.shots, shots_before);
-  EXPECT_LT(s.shots, shots_before + 2000) << "converges, not shooting rounding leftovers";
+  EXPECT_GT(s.shots.count, shots_before);
+  EXPECT_LT(s.shots.count, shots_before + 2000) << "converges, not shooting rounding leftovers";
   double left = 0.0;
-  for (size_t p = 0; p < s.mesh.polygons.size(); ++p)
-    left += std::abs(mean_component(s.radiosity(p, 0)));
+  for (size_t p = 0; p < s.solution.mesh.polygons.size(); ++p)
+    left += std::abs(mean_component(s.solution.radiosity(p, 0)));
   EXPECT_LT(left, 0.01 * lit) << "the scene goes dark";
 }
 
@@ -148,7 +151,8 @@ TEST(Edits, AColourChangeOfZeroMeanInAGreyRoomIsShotToo) {
   SolverState edited = make_solver_state(base_h, options());
   solve(edited, *base_vis);
   set_material(edited, object_named(base_h, "left"), {reddish, Vec3(0)}, *base_vis);
-  EXPECT_GT(edited.unshot_fraction(), options().converge) << "the edit must leave work to do";
+  EXPECT_GT(edited.energy.unshot_fraction(), options().converge)
+      << "the edit must leave work to do";
   solve(edited, *base_vis);
 
   const Hierarchy fresh_h = build_hierarchy(scene(reddish));
@@ -181,10 +185,10 @@ TEST(Edits, ForcedSubdivisionGivesNewVerticesTheirExactRadiosity) {
   SolverState s = make_solver_state(h, o);
   solve(s, *vis);
   const int32_t floor_polygon = int32_t(h.objects[size_t(object_named(h, "floor"))].first_triangle);
-  const size_t before = s.mesh.polygons[size_t(floor_polygon)].vertex_count();
+  const size_t before = s.solution.mesh.polygons[size_t(floor_polygon)].vertex_count();
   const size_t added = force_subdivide(s, floor_polygon, *vis);
-  const PolygonMesh& m = s.mesh.polygons[size_t(floor_polygon)];
-  const std::vector<VertexState>& vs = s.vertex_states[size_t(floor_polygon)];
+  const PolygonMesh& m = s.solution.mesh.polygons[size_t(floor_polygon)];
+  const std::vector<VertexState>& vs = s.solution.vertex_states[size_t(floor_polygon)];
   EXPECT_EQ(added, 3u);
   EXPECT_EQ(m.vertex_count(), before + 3);
   // Exact: the first new vertex holds what every logged shot gives a point there, not the
@@ -199,7 +203,7 @@ TEST(Edits, ForcedSubdivisionGivesNewVerticesTheirExactRadiosity) {
   GatherScratch sc;
   Vec3 expected(0.0f);
   const Vec3 centroid = (m.positions[0] + m.positions[1] + m.positions[2]) / 3.0f;
-  for (const ShotSource& src : s.shot_log) {
+  for (const ShotSource& src : s.shots.sources) {
     if (!may_receive(s, size_t(floor_polygon), src)) continue;
     expected += gather_from_source(mid, h.triangles.normal[size_t(floor_polygon)], centroid, src,
                                    *vis, gather_settings(s), sc);

@@ -29,7 +29,7 @@ struct CornerScene {
     s = make_solver_state(h, {});
   }
   // The wall's two triangles make one cluster.
-  int32_t wall() const { return int32_t(s.clusters.cluster_of[2]); }
+  int32_t wall() const { return int32_t(s.scene.clusters.cluster_of[2]); }
   // Gain at floor point x from the wall.
   float gain(Vec3 x, GatherSettings g) {
     GatherScratch sc;
@@ -95,8 +95,8 @@ TEST(Gather, BesideACurvedSourceTheGainIsItsTrianglesExactFormFactor) {
   const auto vis = make_visibility_backend(BackendKind::Embree, h);
   const SolverState s = make_solver_state(h, {});
   std::vector<ShotSource> sources;
-  for (size_t c = 0; c < s.clusters.size(); ++c) {
-    if (h.triangles.object[s.clusters.polygons[s.clusters.first[c]]] != 0)
+  for (size_t c = 0; c < s.scene.clusters.size(); ++c) {
+    if (h.triangles.object[s.scene.clusters.polygons[s.scene.clusters.first[c]]] != 0)
       sources.push_back(make_shot_source(s, int32_t(c)));
   }
   ASSERT_GT(sources.size(), 1u);
@@ -157,7 +157,7 @@ TEST(Gather, BelowTheIntensityCutAWallStillBlocks) {
     const Hierarchy h = build_hierarchy(d);
     const auto vis = make_visibility_backend(BackendKind::Embree, h);
     const SolverState s = make_solver_state(h, {});
-    const ShotSource src = make_shot_source(s, int32_t(s.clusters.cluster_of[2]));
+    const ShotSource src = make_shot_source(s, int32_t(s.scene.clusters.cluster_of[2]));
     GatherSettings g = gather_settings(s);
     g.cut = 1e9f;
     GatherScratch sc;
@@ -192,7 +192,7 @@ TEST(Gather, NearAndFarFormFactorsAgreeWithTheDoubleContour) {
   SolverOptions o;
   o.max_size = 0.5f;  // clusters up to 8 x 0.5 wide: the quad shoots whole
   const SolverState s = make_solver_state(h, o);
-  ASSERT_EQ(s.clusters.size(), 1u);
+  ASSERT_EQ(s.scene.clusters.size(), 1u);
   const ShotSource src = make_shot_source(s, 0);
   const Vec3 c = src.centroid;
   const float edge = src.extent;

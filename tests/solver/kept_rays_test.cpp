@@ -44,13 +44,13 @@ Solved solve_with(const Hierarchy& h, BackendKind backend, size_t kept_bytes, in
     solve(s, *vis);
   }
   Solved out;
-  for (const std::vector<VertexState>& vs : s.vertex_states) {
+  for (const std::vector<VertexState>& vs : s.solution.vertex_states) {
     for (const VertexState& v : vs) out.irradiance.push_back(v.irradiance);
   }
   out.rays = s.stats.rays.rays;
   out.kept = s.stats.kept_answers;
-  out.kept_bytes = s.kept_rays_bytes;
-  for (const auto& [cluster, k] : s.kept_rays) {
+  out.kept_bytes = s.kept.bytes;
+  for (const auto& [cluster, k] : s.kept.clusters) {
     out.an_end_moved |=
         std::any_of(k.moved.begin(), k.moved.end(), [](uint32_t e) { return e > 1; });
   }

@@ -12,7 +12,7 @@ namespace {
 
 double mesh_bytes(const SolverState& s) {
   double b = 0.0;
-  for (const PolygonMesh& p : s.mesh.polygons) {
+  for (const PolygonMesh& p : s.solution.mesh.polygons) {
     b += double(p.vertex_count()) * (sizeof(Vec3) + sizeof(VertexState)) +
          double(p.elements.size()) * sizeof(Element);
   }

@@ -62,8 +62,9 @@ std::vector<std::pair<Vec3, Vec3>> vertices_of(const Solved& r, const std::strin
   std::vector<std::pair<Vec3, Vec3>> out;
   for (size_t p = 0; p < r.h.triangles.size(); ++p) {
     if (r.h.objects[size_t(r.h.triangles.object[p])].name != name) continue;
-    for (uint32_t v = 0; v < r.s.mesh.polygons[p].vertex_count(); ++v)
-      out.push_back({r.s.mesh.polygons[p].positions[v], r.s.vertex_states[p][v].irradiance});
+    for (uint32_t v = 0; v < r.s.solution.mesh.polygons[p].vertex_count(); ++v)
+      out.push_back({r.s.solution.mesh.polygons[p].positions[v],
+                     r.s.solution.vertex_states[p][v].irradiance});
   }
   return out;
 }

@@ -35,15 +35,15 @@ TEST(OcclusionCulling, NoRayReachesATriangleItHidesFromAnySource) {
   const Hierarchy h = four_rooms();
   const auto vis = make_visibility_backend(BackendKind::Embree, h);
   const SolverState s = make_solver_state(h, SolverOptions{});
-  ASSERT_FALSE(s.culling.empty());
+  ASSERT_FALSE(s.scene.culling.empty());
   size_t hidden = 0, checked = 0, receivable = 0;
   std::vector<uint32_t> unhidden;
   std::vector<Segment> segments;
   std::vector<uint8_t> blocked;
   VisibilityStats stats;
-  for (size_t c = 0; c < s.clusters.size(); ++c) {
+  for (size_t c = 0; c < s.scene.clusters.size(); ++c) {
     const ShotSource src = make_shot_source(s, int32_t(c));
-    unhidden_triangles(s.culling, src, unhidden);
+    unhidden_triangles(s.scene.culling, src, unhidden);
     ASSERT_TRUE(std::is_sorted(unhidden.begin(), unhidden.end()));
     std::vector<uint8_t> kept(h.triangles.size(), 0);
     for (uint32_t p : unhidden) kept[p] = 1;
@@ -53,7 +53,7 @@ TEST(OcclusionCulling, NoRayReachesATriangleItHidesFromAnySource) {
       ++receivable;
       if (kept[p]) continue;
       ++hidden;
-      for (const Vec3& x : points_on(h.triangles, p, s.shadow_offset)) {
+      for (const Vec3& x : points_on(h.triangles, p, s.scene.shadow_offset)) {
         for (size_t i = 0; i < src.sample_count; ++i)
           segments.push_back({x, Vec3(src.end_x[i], src.end_y[i], src.end_z[i]) - x});
       }
@@ -76,13 +76,13 @@ TEST(OcclusionCulling, ALightSeesPartOfTheRoomsBeyondItsDoorsAndLittleOfTheRoomA
   const SolverState s = make_solver_state(h, SolverOptions{});
   // The first emitting cluster: room 0's lamp.
   int32_t lamp = -1;
-  for (size_t c = 0; c < s.clusters.size() && lamp < 0; ++c) {
-    const uint32_t p = s.clusters.polygons[s.clusters.first[c]];
-    if (max_component(s.material_of(p).emission) > 0.0f) lamp = int32_t(c);
+  for (size_t c = 0; c < s.scene.clusters.size() && lamp < 0; ++c) {
+    const uint32_t p = s.scene.clusters.polygons[s.scene.clusters.first[c]];
+    if (max_component(s.solution.material_of(p).emission) > 0.0f) lamp = int32_t(c);
   }
   ASSERT_GE(lamp, 0);
   std::vector<uint32_t> unhidden;
-  unhidden_triangles(s.culling, make_shot_source(s, lamp), unhidden);
+  unhidden_triangles(s.scene.culling, make_shot_source(s, lamp), unhidden);
   // Per room (5 m square, room 0 at the origin): triangles in all, and shown to the lamp.
   auto room = [&](size_t p) {
     const Vec3 c = h.triangles.centroid(p);
@@ -117,13 +117,13 @@ TEST(OcclusionCulling, ChangesNoGainWhenEveryGainGetsItsRays) {
     const SolverState without = testing::solve_shots(h, *vis, o, shots);
     EXPECT_GT(with.stats.hidden, 0u);
     EXPECT_LT(with.stats.rays.rays, without.stats.rays.rays);
-    ASSERT_EQ(with.vertex_states.size(), without.vertex_states.size());
+    ASSERT_EQ(with.solution.vertex_states.size(), without.solution.vertex_states.size());
     float largest = 0.0f, worst = 0.0f;
-    for (size_t p = 0; p < with.vertex_states.size(); ++p) {
-      ASSERT_EQ(with.vertex_states[p].size(), without.vertex_states[p].size());
-      for (size_t v = 0; v < with.vertex_states[p].size(); ++v) {
-        const Vec3 a = with.vertex_states[p][v].irradiance;
-        const Vec3 b = without.vertex_states[p][v].irradiance;
+    for (size_t p = 0; p < with.solution.vertex_states.size(); ++p) {
+      ASSERT_EQ(with.solution.vertex_states[p].size(), without.solution.vertex_states[p].size());
+      for (size_t v = 0; v < with.solution.vertex_states[p].size(); ++v) {
+        const Vec3 a = with.solution.vertex_states[p][v].irradiance;
+        const Vec3 b = without.solution.vertex_states[p][v].irradiance;
         largest = std::max(largest, max_component(b));
         worst = std::max(worst, max_component(glm::abs(a - b)));
       }

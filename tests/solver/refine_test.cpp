@@ -43,7 +43,7 @@ struct Midpoint {
 std::vector<Midpoint> floor_midpoints(const OneShot& r) {
   std::vector<Midpoint> out;
   for (size_t p = 0; p < 2; ++p) {
-    for (const auto& [key, v] : r.s.mesh.polygons[p].midpoints.entries()) {
+    for (const auto& [key, v] : r.s.solution.mesh.polygons[p].midpoints.entries()) {
       out.push_back({p, v, uint32_t(key >> 32), uint32_t(key & 0xffffffffu)});
     }
   }
@@ -54,13 +54,14 @@ TEST(Refine, OriginalRuleComputesOnlyMidpointsOfEdgesBeyondTheLimit) {
   SolverOptions o;
   o.midpoints = MidpointRule::Interpolate;
   const auto r = shoot_lamp_once(o);
-  const float limit = o.subdivision_threshold * r->s.radiosity_scale;
+  const float limit = o.subdivision_threshold * r->s.energy.radiosity_scale;
   int computed = 0, interpolated = 0;
   for (const Midpoint& m : floor_midpoints(*r)) {
-    const std::vector<VertexState>& vs = r->s.vertex_states[m.polygon];
+    const std::vector<VertexState>& vs = r->s.solution.vertex_states[m.polygon];
     // Both ends of an edge existed before its midpoint, so their values decided the rule.
     const Vec3 mean = (vs[m.a].irradiance + vs[m.b].irradiance) * 0.5f;
-    const Vec3 ba = r->s.radiosity(m.polygon, m.a), bb = r->s.radiosity(m.polygon, m.b);
+    const Vec3 ba = r->s.solution.radiosity(m.polygon, m.a),
+               bb = r->s.solution.radiosity(m.polygon, m.b);
     if (differs(ba, bb, limit)) {
       ++computed;
     } else {
@@ -81,7 +82,7 @@ TEST(Refine, ExactRuleComputesEveryMidpoint) {
   // A computed midpoint under the peak is above the mean of its ends somewhere.
   int above = 0;
   for (const Midpoint& m : floor_midpoints(*r)) {
-    const std::vector<VertexState>& vs = r->s.vertex_states[m.polygon];
+    const std::vector<VertexState>& vs = r->s.solution.vertex_states[m.polygon];
     above +=
         vs[m.vertex].irradiance.x > 1.001f * 0.5f * (vs[m.a].irradiance.x + vs[m.b].irradiance.x);
   }
@@ -95,15 +96,16 @@ TEST(Refine, SharedVerticesAreComputedOnce) {
   // shared diagonal once for both. The lamp is the source.
   size_t vertices = 0, copies = 0, midpoint_copies = 0;
   for (size_t p = 0; p < 2; ++p) {
-    const PolygonMesh& m = r->s.mesh.polygons[p];
+    const PolygonMesh& m = r->s.solution.mesh.polygons[p];
     vertices += m.vertex_count();
-    for (const VertexCopy& c : r->s.shared.copies[p]) {
+    for (const VertexCopy& c : r->s.scene.shared.copies[p]) {
       ++copies;
       midpoint_copies += c.vertex >= 3;  // not a corner: made by the refinement
       // The same state as the vertex it copies, bit for bit.
-      const VertexState &to = r->s.vertex_states[p][c.vertex],
-                        &from = r->s.vertex_states[c.from_polygon][c.from_vertex];
-      EXPECT_EQ(m.positions[c.vertex], r->s.mesh.polygons[c.from_polygon].positions[c.from_vertex]);
+      const VertexState &to = r->s.solution.vertex_states[p][c.vertex],
+                        &from = r->s.solution.vertex_states[c.from_polygon][c.from_vertex];
+      EXPECT_EQ(m.positions[c.vertex],
+                r->s.solution.mesh.polygons[c.from_polygon].positions[c.from_vertex]);
       EXPECT_EQ(to.irradiance, from.irradiance);
       EXPECT_EQ(to.unshot, from.unshot);
     }
@@ -120,7 +122,7 @@ TEST(Refine, LeavesRespectTheMinimumSize) {
   size_t leaves = 0;
   float smallest = 1e30f;
   for (size_t p = 0; p < 2; ++p) {
-    const PolygonMesh& m = r->s.mesh.polygons[p];
+    const PolygonMesh& m = r->s.solution.mesh.polygons[p];
     for_each_leaf(m, [&](uint32_t e) {
       ++leaves;
       smallest = std::min(smallest, longest_edge(m, e));

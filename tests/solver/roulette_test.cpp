@@ -31,7 +31,7 @@ struct FarFloor {
     s = make_solver_state(h, {});
   }
   ShotSource light() const {
-    return make_shot_source(s, int32_t(s.clusters.cluster_of[h.triangles.size() - 1]));
+    return make_shot_source(s, int32_t(s.scene.clusters.cluster_of[h.triangles.size() - 1]));
   }
 };
 
@@ -119,7 +119,7 @@ TEST(Roulette, ABoxBeyondReachHoldsNoPointThatGathers) {
     Aabb box;
     box.extend(Vec3(u(rng), u(rng), u(rng)));
     box.extend(box.lo + Vec3(size(rng), size(rng), size(rng)));
-    const bool reaches = src.roulette_reaches(box);
+    const bool reaches = src.roulette_reaches_box(box);
     (reaches ? within : beyond) += 1;
     for (int k = 0; k < 8; ++k) {
       const Vec3 t(float(k & 1), float((k >> 1) & 1), float((k >> 2) & 1));
@@ -132,7 +132,7 @@ TEST(Roulette, ABoxBeyondReachHoldsNoPointThatGathers) {
       }
       Aabb point;
       point.extend(x);
-      EXPECT_EQ(src.roulette_reaches(point, x, n), src.roulette_weight(x, n, 0.0f) > 0.0f);
+      EXPECT_EQ(src.roulette_reaches_triangle(point, x, n), src.roulette_weight(x, n, 0.0f) > 0.0f);
     }
   }
   EXPECT_GT(beyond, 100);
@@ -188,9 +188,9 @@ TEST(Roulette, TheFloorGainsTheSameOnAverageAndAShotSkipsWhatItDoesNotReach) {
     Aabb b;
     for (const Vec3& x : f.h.triangles.corners[p]) b.extend(x);
     const bool reaches =
-        src.roulette_reaches(b, f.h.triangles.corners[p][0], f.h.triangles.normal[p]);
+        src.roulette_reaches_triangle(b, f.h.triangles.corners[p][0], f.h.triangles.normal[p]);
     reached += reaches;
-    EXPECT_EQ(bool(f.s.received[p]), reaches) << "triangle " << p;
+    EXPECT_EQ(bool(f.s.receivers.marked[p]), reaches) << "triangle " << p;
   }
   EXPECT_GT(reached, 0u);
   EXPECT_LT(reached, floor_triangles / 4);

@@ -20,7 +20,7 @@ double unshot_after(const Hierarchy& h, bool overshoot, int shots) {
   const auto vis = make_visibility_backend(BackendKind::Embree, h);
   SolverOptions o;
   o.overshoot = overshoot;
-  return testing::solve_shots(h, *vis, o, shots).unshot_fraction();
+  return testing::solve_shots(h, *vis, o, shots).energy.unshot_fraction();
 }
 
 TEST(Solver, OvershootingKeepsTheUnshotEnergyNearShootingWithout) {
@@ -39,19 +39,19 @@ TEST(Solver, AShooterWhoseShotsGatherAtMoreVerticesWaitsForMoreEnergy) {
   SolverState s = make_solver_state(h, SolverOptions{});
   for (int i = 0; i < 5; ++i) ASSERT_TRUE(step(s, *vis));
   // Each shot's cost is kept: the vertices of the polygons that received it.
-  ASSERT_EQ(s.cluster_cost.size(), s.clusters.size());
-  EXPECT_GT(s.cluster_cost[size_t(s.history.back().source)], 0.0);
+  ASSERT_EQ(s.shots.cluster_cost.size(), s.scene.clusters.size());
+  EXPECT_GT(s.shots.cluster_cost[size_t(s.shots.history.back().source)], 0.0);
   // Every cluster as costly: the most energy goes first.
-  const std::vector<double> same(s.clusters.size(), 1000.0);
-  s.cluster_cost = same;
+  const std::vector<double> same(s.scene.clusters.size(), 1000.0);
+  s.shots.cluster_cost = same;
   const std::optional<Shooter> most = choose_shooter(s);
   ASSERT_TRUE(most);
   // Another cluster that barely costs anything goes before it, with less energy.
   std::optional<Shooter> cheap;
-  for (size_t c = 0; c < s.clusters.size() && !cheap; ++c) {
+  for (size_t c = 0; c < s.scene.clusters.size() && !cheap; ++c) {
     if (int32_t(c) == most->cluster) continue;
-    s.cluster_cost = same;
-    s.cluster_cost[c] = 1.0;
+    s.shots.cluster_cost = same;
+    s.shots.cluster_cost[c] = 1.0;
     const std::optional<Shooter> x = choose_shooter(s);
     ASSERT_TRUE(x);
     if (x->cluster == int32_t(c)) cheap = x;
@@ -59,8 +59,8 @@ TEST(Solver, AShooterWhoseShotsGatherAtMoreVerticesWaitsForMoreEnergy) {
   ASSERT_TRUE(cheap) << "no cheap cluster went first";
   EXPECT_LT(cheap->energy, most->energy);
   // The one with the most energy, its shots dear, waits.
-  s.cluster_cost = same;
-  s.cluster_cost[size_t(most->cluster)] = 1e12;
+  s.shots.cluster_cost = same;
+  s.shots.cluster_cost[size_t(most->cluster)] = 1e12;
   const std::optional<Shooter> x = choose_shooter(s);
   ASSERT_TRUE(x);
   EXPECT_NE(x->cluster, most->cluster);
@@ -77,15 +77,16 @@ TEST(Solver, TheShooterHasTheMostEnergyPerCostOfAllClusters) {
   for (int shot = 0; shot < 60; ++shot) {
     if (shot % 5 == 0) {
       // Every cluster's cost known: it is expected at its cost plus the overhead of a shot.
-      std::vector<double> costs(s.clusters.size());
+      std::vector<double> costs(s.scene.clusters.size());
       for (double& c : costs) c = std::floor(cost(rng));
-      s.cluster_cost = costs;
-      const double amb = ambient_estimate(s);
+      s.shots.cluster_cost = costs;
+      const double amb = ambient_estimate(s.energy);
       int32_t best = -1;
       double most = 0.0;
-      for (size_t c = 0; c < s.clusters.size(); ++c) {
-        const double score =
-            cluster_shooting_energy(s, c, amb * retention(s, c)) / (costs[c] + 1000.0);
+      for (size_t c = 0; c < s.scene.clusters.size(); ++c) {
+        const double score = cluster_shooting_energy(s.energy, s.solution, s.scene.clusters, c,
+                                                     amb * retention(s.energy, c)) /
+                             (costs[c] + 1000.0);
         if (score > most) most = score, best = int32_t(c);
       }
       const std::optional<Shooter> chosen = choose_shooter(s);
@@ -103,12 +104,12 @@ TEST(Solver, ASolveWithoutEditsLogsItsMajorShotsOnly) {
   const SolverState all = testing::solve_shots(h, *vis, o, 30);
   o.log_minor_shots = false;
   const SolverState major = testing::solve_shots(h, *vis, o, 30);
-  EXPECT_EQ(all.shot_log.size(), 30u);
-  ASSERT_LT(major.shot_log.size(), 30u);
-  EXPECT_GT(major.shot_log.size(), 0u) << "the light's first shot is major";
-  for (const ShotSource& src : major.shot_log) EXPECT_TRUE(src.major);
+  EXPECT_EQ(all.shots.sources.size(), 30u);
+  ASSERT_LT(major.shots.sources.size(), 30u);
+  EXPECT_GT(major.shots.sources.size(), 0u) << "the light's first shot is major";
+  for (const ShotSource& src : major.shots.sources) EXPECT_TRUE(src.major);
   // The same solve otherwise: the log is only read back by edits and forced subdivision.
-  EXPECT_EQ(all.unshot_fraction(), major.unshot_fraction());
+  EXPECT_EQ(all.energy.unshot_fraction(), major.energy.unshot_fraction());
 }
 
 // Open scenes: light that leaves the scene is gone. Overshooting expects back only what a
@@ -131,8 +132,8 @@ OpenSolve solve_open(const SceneDescription& d, bool overshoot) {
   SolverState s = make_solver_state(h, o);
   const StopReason why = solve(s, *vis);
   std::vector<double> r;
-  for (size_t c = 0; c < s.clusters.size(); ++c) r.push_back(retention(s, c));
-  return {why, s.shots, s.unshot_fraction(), r};
+  for (size_t c = 0; c < s.scene.clusters.size(); ++c) r.push_back(retention(s.energy, c));
+  return {why, s.shots.count, s.energy.unshot_fraction(), r};
 }
 
 void expect_converges(const SceneDescription& d, int64_t most_shots) {
@@ -213,17 +214,17 @@ TEST(Solver, ClosedSceneClustersKeepNearlyAllTheyShoot) {
   const Hierarchy h = build_hierarchy(d);
   const auto vis = make_visibility_backend(BackendKind::Embree, h);
   SolverState s = make_solver_state(h, SolverOptions{});
-  const double closed = s.interreflection;
+  const double closed = s.energy.interreflection;
   for (int i = 0; i < 20; ++i) ASSERT_TRUE(step(s, *vis));
   size_t shot = 0;
-  for (size_t c = 0; c < s.clusters.size(); ++c) {
-    if (s.cluster_cost.size() > c && s.cluster_cost[c] > 0.0) {
+  for (size_t c = 0; c < s.scene.clusters.size(); ++c) {
+    if (s.shots.cluster_cost.size() > c && s.shots.cluster_cost[c] > 0.0) {
       ++shot;
-      EXPECT_GT(retention(s, c), 0.95) << "cluster " << c;
+      EXPECT_GT(retention(s.energy, c), 0.95) << "cluster " << c;
     }
   }
   EXPECT_GE(shot, 3u);
-  EXPECT_NEAR(s.interreflection, closed, 0.1 * closed);
+  EXPECT_NEAR(s.energy.interreflection, closed, 0.1 * closed);
 }
 
 TEST(Solver, RetentionLowersTheInterreflectionFactorAndIsRestoredExactly) {
@@ -232,20 +233,25 @@ TEST(Solver, RetentionLowersTheInterreflectionFactorAndIsRestoredExactly) {
   testing::add_quad(d, "floor", {0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}, Vec3(0.5f), Vec3(0));
   const Hierarchy h = build_hierarchy(d);
   SolverState s = make_solver_state(h, SolverOptions{});
-  const double closed = s.interreflection;
+  const double closed = s.energy.interreflection;
   EXPECT_DOUBLE_EQ(closed, 2.0) << "1 / (1 - 0.5)";
-  for (size_t c = 0; c < s.clusters.size(); ++c) set_retention(s, c, 0.0);
-  EXPECT_DOUBLE_EQ(s.interreflection, 1.0) << "nothing lands: no interreflection";
-  for (size_t c = 0; c < s.clusters.size(); ++c) set_retention(s, c, 1.0);
-  EXPECT_EQ(s.interreflection, closed);
+  for (size_t c = 0; c < s.scene.clusters.size(); ++c)
+    set_retention(s.energy, s.solution, s.scene.clusters, c, 0.0);
+  EXPECT_DOUBLE_EQ(s.energy.interreflection, 1.0) << "nothing lands: no interreflection";
+  for (size_t c = 0; c < s.scene.clusters.size(); ++c)
+    set_retention(s.energy, s.solution, s.scene.clusters, c, 1.0);
+  EXPECT_EQ(s.energy.interreflection, closed);
   // Set in any order, recomputed from scratch (a checkpoint read, an edit): the same bits.
-  for (size_t c = 0; c < s.clusters.size(); ++c) set_retention(s, c, 0.3 + 0.1 * double(c));
-  const double some = s.interreflection;
-  for (size_t c = s.clusters.size(); c-- > 0;) set_retention(s, c, 0.7);
-  for (size_t c = s.clusters.size(); c-- > 0;) set_retention(s, c, 0.3 + 0.1 * double(c));
-  EXPECT_EQ(s.interreflection, some);
-  update_unshot_totals(s);
-  EXPECT_EQ(s.interreflection, some);
+  for (size_t c = 0; c < s.scene.clusters.size(); ++c)
+    set_retention(s.energy, s.solution, s.scene.clusters, c, 0.3 + 0.1 * double(c));
+  const double some = s.energy.interreflection;
+  for (size_t c = s.scene.clusters.size(); c-- > 0;)
+    set_retention(s.energy, s.solution, s.scene.clusters, c, 0.7);
+  for (size_t c = s.scene.clusters.size(); c-- > 0;)
+    set_retention(s.energy, s.solution, s.scene.clusters, c, 0.3 + 0.1 * double(c));
+  EXPECT_EQ(s.energy.interreflection, some);
+  update_unshot_totals(s.energy, s.solution, s.scene.clusters, s.ownership.ranks);
+  EXPECT_EQ(s.energy.interreflection, some);
 }
 
 }  // namespace

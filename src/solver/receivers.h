@@ -1,0 +1,26 @@
+// The polygons a shot reached, as the shot hands them to refinement and the bookkeeping.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace rad {
+
+/// Vertices [begin, end) of one polygon: a work item of a shot's gathering loop.
+struct VertexRange {
+  uint32_t polygon = 0, begin = 0, end = 0;
+  uint32_t receiver = 0;  // the polygon's index in Receivers::polygons
+};
+
+/// The polygons that may have gained from the last shot (shoot_to_receivers, shoot.h): a mask
+/// per polygon and their list in index order. The others' VertexState::last_gain is stale. Kept
+/// from shot to shot with the loop's work lists, so a small shot costs what it reaches, not
+/// the scene.
+struct Receivers {
+  std::vector<uint8_t> marked;           // per polygon: 1 when listed in `polygons`
+  std::vector<uint32_t> polygons;        // in index order
+  std::vector<VertexRange> gather_work;  // their vertices in work items (shoot.cpp)
+  std::vector<uint32_t> unhidden;        // the triangles culling left to the shot (shoot.cpp)
+};
+
+}  // namespace rad

@@ -1,0 +1,52 @@
+// The radiosity solution itself: the mesh of every polygon and what each of its vertices holds.
+#pragma once
+
+#include <vector>
+
+#include "hierarchy/hierarchy.h"
+#include "mesh/patch_mesh.h"
+
+namespace rad {
+
+/// What the solver keeps at a vertex of the radiosity mesh (whose position the mesh keeps, at
+/// the same index). One record per vertex, not one array per quantity: a polygon that never
+/// splits costs one allocation, not four.
+struct VertexState {
+  Vec3 irradiance{0.0f};  // H: radiosity gathered from all shots so far; B = E + rho * H
+  Vec3 unshot{0.0f};      // radiosity received but not yet shot
+  Vec3 last_gain{0.0f};   // H gathered from the current shot only (for subdivision)
+  Vec3 major{0.0f};       // part of H gathered from the solver's major shots (see solver)
+
+  /// Takes a shot's gain dh (H before the reflectance rho): into H, the current shot and, for a
+  /// major shot, the major part; into the light to shoot only when the vertex `shoots` (not one
+  /// inside a solid, buried_vertices.h).
+  void receive(const Vec3& dh, const Vec3& rho, bool major_shot, bool shoots) {
+    irradiance += dh;
+    if (shoots) unshot += rho * dh;
+    last_gain = dh;
+    if (major_shot) major += dh;
+  }
+};
+
+/// The scene's radiosity as solved so far: per polygon (a triangle of the hierarchy) its mesh
+/// and its vertices' states, and the materials as edited. Keeps a pointer to the hierarchy,
+/// which must outlive it.
+struct Solution {
+  const Hierarchy* hierarchy = nullptr;
+  Mesh mesh;
+  /// Per polygon, per vertex of its mesh (same indices; as long as its vertex table).
+  std::vector<std::vector<VertexState>> vertex_states;
+  /// Materials per hierarchy object (copied so they can be edited between shots).
+  std::vector<Material> materials;
+
+  const Material& material_of(size_t polygon) const {
+    return materials[size_t(hierarchy->triangles.object[polygon])];
+  }
+  /// Radiosity B = E + rho * H of vertex v of polygon p.
+  Vec3 radiosity(size_t p, uint32_t v) const {
+    const Material& m = material_of(p);
+    return m.emission + m.reflectance * vertex_states[p][v].irradiance;
+  }
+};
+
+}  // namespace rad
