@@ -7,224 +7,17 @@
 #include <cmath>
 #include <numeric>
 
-#include "hierarchy/triangle_adjacency.h"
+#include "core/planar_geometry.h"
 #include "solver/shot_source.h"
-#include "visibility/agreement.h"
 
 namespace rad {
 
 namespace {
 
-using DVec2 = glm::dvec2;
-
 constexpr uint32_t kLeafTriangles = 8;
 // Occluders picked per shot, and how many of the best-placed regions are looked at for them.
 constexpr size_t kOccluders = 32;  // one bit each in a mask
 constexpr size_t kCandidates = 8 * kOccluders;
-
-uint32_t build_node(ReceiverTree& tree, const Hierarchy& h, const std::vector<Vec3>& centroid,
-                    uint32_t first, uint32_t count) {
-  const Triangles& t = h.triangles;
-  const uint32_t node = uint32_t(tree.box.size());
-  Aabb box, centres;
-  uint8_t cullable = 1;
-  for (uint32_t k = first; k < first + count; ++k) {
-    const uint32_t i = tree.order[k];
-    box.extend(triangle_box(t.corners[i]));
-    centres.extend(centroid[i]);
-    cullable &= uint8_t(h.objects[size_t(t.object[i])].receives_shadows);
-  }
-  tree.box.push_back(box);
-  tree.first.push_back(first), tree.count.push_back(count), tree.right.push_back(0);
-  tree.cullable.push_back(cullable);
-  if (count <= kLeafTriangles) return node;
-  const int axis = centres.widest_axis();
-  const uint32_t half = count / 2;
-  auto begin = tree.order.begin() + first;
-  // Ties broken by index: the same scene gives the same tree.
-  std::nth_element(begin, begin + half, begin + count, [&](uint32_t a, uint32_t b) {
-    return centroid[a][axis] < centroid[b][axis] ||
-           (centroid[a][axis] == centroid[b][axis] && a < b);
-  });
-  build_node(tree, h, centroid, first, half);
-  const uint32_t right = build_node(tree, h, centroid, first + half, count - half);
-  tree.right[node] = right;
-  return node;
-}
-
-ReceiverTree make_receiver_tree(const Hierarchy& h) {
-  const Triangles& t = h.triangles;
-  ReceiverTree tree;
-  if (t.size() == 0) return tree;
-  tree.order.resize(t.size());
-  std::iota(tree.order.begin(), tree.order.end(), 0u);
-  std::vector<Vec3> centroid(t.size());
-  for (size_t i = 0; i < t.size(); ++i) centroid[i] = t.centroid(i);
-  build_node(tree, h, centroid, 0, uint32_t(t.size()));
-  return tree;
-}
-
-// Area of the convex polygon a[0 .. n).
-double polygon_area(const DVec2* a, size_t n) {
-  double twice = 0.0;
-  for (size_t i = 1; i + 1 < n; ++i) {
-    twice += (a[i].x - a[0].x) * (a[i + 1].y - a[0].y) - (a[i + 1].x - a[0].x) * (a[i].y - a[0].y);
-  }
-  return 0.5 * std::abs(twice);
-}
-
-// Area of triangle t inside the convex polygon c[0 .. m) (Sutherland-Hodgman: t clipped by each
-// edge of c in turn; either winding).
-double area_inside(const std::array<DVec2, 3>& t, const DVec2* c, size_t m) {
-  DVec2 a[16], b[16];
-  size_t n = 3;
-  for (size_t i = 0; i < 3; ++i) a[i] = t[i];
-  const double orient =
-      (c[1].x - c[0].x) * (c[2].y - c[0].y) - (c[2].x - c[0].x) * (c[1].y - c[0].y);
-  const double s = orient >= 0.0 ? 1.0 : -1.0;
-  for (size_t e = 0; e < m && n > 0; ++e) {
-    const DVec2 &p0 = c[e], &p1 = c[(e + 1) % m];
-    auto inside = [&](const DVec2& p) {
-      return s * ((p1.x - p0.x) * (p.y - p0.y) - (p1.y - p0.y) * (p.x - p0.x));
-    };
-    size_t k = 0;
-    for (size_t i = 0; i < n; ++i) {
-      const DVec2 &p = a[i], &q = a[(i + 1) % n];
-      const double dp = inside(p), dq = inside(q);
-      if (dp >= 0.0) b[k++] = p;
-      if ((dp >= 0.0) != (dq >= 0.0)) b[k++] = p + (q - p) * (dp / (dp - dq));
-    }
-    n = k;
-    for (size_t i = 0; i < n; ++i) a[i] = b[i];
-  }
-  return polygon_area(a, n);
-}
-
-double area_in_rect(const std::array<DVec2, 3>& t, const DVec2& lo, const DVec2& hi) {
-  const DVec2 rect[4] = {lo, {hi.x, lo.y}, hi, {lo.x, hi.y}};
-  return area_inside(t, rect, 4);
-}
-
-// Whether triangle t holds the rectangle [lo, hi] (its four corners).
-bool holds(const std::array<DVec2, 3>& t, const DVec2& lo, const DVec2& hi) {
-  const double orient =
-      (t[1].x - t[0].x) * (t[2].y - t[0].y) - (t[2].x - t[0].x) * (t[1].y - t[0].y);
-  const DVec2 q[4] = {lo, {hi.x, lo.y}, hi, {lo.x, hi.y}};
-  for (size_t e = 0; e < 3; ++e) {
-    const DVec2 &a = t[e], &b = t[(e + 1) % 3];
-    for (const DVec2& p : q) {
-      if (orient * ((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)) < 0.0) return false;
-    }
-  }
-  return orient != 0.0;
-}
-
-std::array<DVec2, 3> flatten(const DVec3& origin, const DVec3& u, const DVec3& w,
-                             const std::array<Vec3, 3>& c) {
-  std::array<DVec2, 3> t;
-  for (size_t k = 0; k < 3; ++k) {
-    const DVec3 d = DVec3(c[k]) - origin;
-    t[k] = {glm::dot(d, u), glm::dot(d, w)};
-  }
-  return t;
-}
-
-std::array<DVec2, 2> box_of(const std::array<DVec2, 3>& t) {
-  return {glm::min(glm::min(t[0], t[1]), t[2]), glm::max(glm::max(t[0], t[1]), t[2])};
-}
-
-// Any frame of the plane with unit normal n.
-void any_frame(const DVec3& n, DVec3& u, DVec3& w) {
-  const DVec3 a = std::abs(n.x) < 0.6 ? DVec3(1, 0, 0) : DVec3(0, 1, 0);
-  u = glm::normalize(glm::cross(n, a));
-  w = glm::cross(n, u);
-}
-
-// The occluder of regions `parts` (coplanar, not overlapping), in the frame (one of their edges'
-// directions) where their box is smallest: a wall gets its own sides as axes, not a diagonal.
-Occluder make_occluder(const std::vector<FlatRegion>& regions, const std::vector<uint32_t>& parts) {
-  Occluder o;
-  const FlatRegion& first = regions[parts[0]];
-  o.normal = DVec3(first.normal), o.origin = DVec3(first.point);
-  std::vector<Vec3> points;
-  std::vector<DVec3> directions;
-  for (uint32_t r : parts) {
-    for (const auto& c : regions[r].triangles) {
-      for (size_t k = 0; k < 3; ++k) {
-        points.push_back(c[k]);
-        directions.push_back(DVec3(c[(k + 1) % 3]) - DVec3(c[k]));
-      }
-    }
-    o.part_centre.push_back(Vec3(0.0f));
-    o.part_area.push_back(regions[r].area);
-  }
-  any_frame(o.normal, o.u, o.w);
-  // The distinct edge directions (a fused wall repeats its pieces' few), longest edges first.
-  std::sort(directions.begin(), directions.end(),
-            [](const DVec3& a, const DVec3& b) { return glm::length(a) > glm::length(b); });
-  std::vector<DVec3> distinct;
-  for (DVec3 d : directions) {
-    d -= o.normal * glm::dot(d, o.normal);
-    if (!(glm::length(d) > 0.0)) continue;
-    d = glm::normalize(d);
-    bool seen = false;
-    for (const DVec3& e : distinct) seen |= std::abs(glm::dot(d, e)) > 1.0 - 1e-9;
-    if (!seen) distinct.push_back(d);
-    if (distinct.size() == 16) break;
-  }
-  double best = std::numeric_limits<double>::infinity();
-  for (const DVec3& u : distinct) {
-    const DVec3 w = glm::cross(o.normal, u);
-    DVec2 lo(std::numeric_limits<double>::infinity()), hi(-lo);
-    for (const Vec3& p : points) {
-      const DVec2 q(glm::dot(DVec3(p), u), glm::dot(DVec3(p), w));
-      lo = glm::min(lo, q), hi = glm::max(hi, q);
-    }
-    const double area = (hi.x - lo.x) * (hi.y - lo.y);
-    if (area < best) best = area, o.u = u, o.w = w;
-  }
-  o.lo = DVec2(std::numeric_limits<double>::infinity()), o.hi = -o.lo;
-  std::vector<std::array<DVec2, 3>> tris;
-  std::vector<std::array<DVec2, 2>> boxes;
-  for (size_t k = 0; k < parts.size(); ++k) {
-    const FlatRegion& r = regions[parts[k]];
-    Aabb part;
-    for (const auto& c : r.triangles) {
-      for (const Vec3& p : c) part.extend(p);
-      tris.push_back(flatten(o.origin, o.u, o.w, c));
-      boxes.push_back(box_of(tris.back()));
-      o.lo = glm::min(o.lo, boxes.back()[0]), o.hi = glm::max(o.hi, boxes.back()[1]);
-    }
-    o.part_centre[k] = part.center();
-    o.box.extend(part);
-  }
-  // Square-ish cells, 64 along the longer side.
-  const DVec2 size = o.hi - o.lo;
-  const double longer = std::max(size.x, size.y);
-  auto cells = [&](double side) {
-    return uint32_t(std::clamp(std::ceil(64.0 * side / longer), 1.0, 64.0));
-  };
-  o.columns = longer > 0.0 ? cells(size.x) : 1, o.rows = longer > 0.0 ? cells(size.y) : 1;
-  o.full.assign(o.rows, 0), o.partly.assign(o.rows, 0);
-  const DVec2 cell = size / DVec2(o.columns, o.rows);
-  for (uint32_t j = 0; j < o.rows; ++j) {
-    for (uint32_t i = 0; i < o.columns; ++i) {
-      const DVec2 lo = o.lo + cell * DVec2(i, j), hi = lo + cell;
-      double covered = 0.0;
-      bool whole = false;
-      for (size_t k = 0; k < tris.size() && !whole; ++k) {
-        const auto& b = boxes[k];
-        if (b[1].x <= lo.x || b[0].x >= hi.x || b[1].y <= lo.y || b[0].y >= hi.y) continue;
-        whole = holds(tris[k], lo, hi);
-        covered += whole ? 0.0 : area_in_rect(tris[k], lo, hi);
-      }
-      const double need = cell.x * cell.y;
-      if (whole || covered >= need * (1.0 - 1e-6)) o.full[j] |= uint64_t(1) << i;
-      if (whole || covered > 0.0) o.partly[j] |= uint64_t(1) << i;
-    }
-  }
-  return o;
-}
 
 // Eight floats as one vector register (GCC vector extension): a box's corners, or the source's.
 using Lanes = float __attribute__((vector_size(8 * sizeof(float))));
@@ -354,20 +147,6 @@ struct ShotOccluders {
   }
 };
 
-// Union-find over regions.
-uint32_t root(std::vector<uint32_t>& parent, uint32_t i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
-}
-
-bool touch(const Aabb& a, const Aabb& b, float gap) {
-  return a.lo.x <= b.hi.x + gap && b.lo.x <= a.hi.x + gap && a.lo.y <= b.hi.y + gap &&
-         b.lo.y <= a.hi.y + gap && a.lo.z <= b.hi.z + gap && b.lo.z <= a.hi.z + gap;
-}
-
-// A fused occluder stays within this many triangles: each coverage test looks at them all.
-constexpr size_t kMaxFused = 32;
-
 }  // namespace
 
 OcclusionCulling make_occlusion_culling(const Hierarchy& h, float shadow_offset) {
@@ -375,107 +154,22 @@ OcclusionCulling make_occlusion_culling(const Hierarchy& h, float shadow_offset)
   // Shadow rays start up to the shadow offset off a receiving point (moved a 1e-4 fraction of
   // the way to its polygon's centroid: inside the polygon) and end up to it off the source.
   c.margin = 4.0 * double(shadow_offset) + 1e-6 * double(h.bounds.magnitude());
-  std::vector<FlatRegion> regions;
-  for (FlatRegion& r : flat_regions(h))
-    if (h.objects[size_t(r.object)].casts_shadows) regions.push_back(std::move(r));
-  if (regions.empty()) return c;
-  std::vector<Aabb> box(regions.size());
-  for (size_t r = 0; r < regions.size(); ++r)
-    for (const auto& t : regions[r].triangles) box[r].extend(triangle_box(t));
-  // Regions by plane (normal and offset rounded; a plane split by the rounding is only fused
-  // less), then along x: touching coplanar regions are neighbours in this order.
-  const double step = 16.0 * c.margin;
-  auto key = [&](uint32_t r) {
-    const Vec3 n = regions[r].normal;
-    return std::array<int64_t, 5>{std::llround(double(n.x) * 1e3), std::llround(double(n.y) * 1e3),
-                                  std::llround(double(n.z) * 1e3),
-                                  std::llround(double(glm::dot(n, regions[r].point)) / step), 0};
-  };
-  std::vector<uint32_t> order(regions.size());
-  std::iota(order.begin(), order.end(), 0u);
-  std::vector<std::array<int64_t, 5>> keys(regions.size());
-  for (uint32_t r = 0; r < regions.size(); ++r) keys[r] = key(r);
-  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-    if (keys[a] != keys[b]) return keys[a] < keys[b];
-    return box[a].lo.x < box[b].lo.x || (box[a].lo.x == box[b].lo.x && a < b);
-  });
-  std::vector<uint32_t> parent(regions.size()), size(regions.size());
-  std::vector<std::vector<uint32_t>> members(regions.size());
-  for (uint32_t r = 0; r < regions.size(); ++r) {
-    parent[r] = r, members[r] = {r};
-    size[r] = uint32_t(regions[r].triangles.size());
-  }
-  const float gap = float(c.margin);
-  const double tolerance = ambiguity_limit(h);
-  for (size_t i = 0; i < order.size(); ++i) {
-    const uint32_t a = order[i];
-    const DVec3 n(regions[a].normal);
-    DVec3 u, w;
-    any_frame(n, u, w);
-    for (size_t j = i + 1;
-         j < order.size() && keys[order[j]] == keys[a] && box[order[j]].lo.x <= box[a].hi.x + gap;
-         ++j) {
-      const uint32_t b = order[j];
-      if (!touch(box[a], box[b], gap)) continue;
-      if (glm::dot(n, DVec3(regions[b].normal)) < double(kPlanarCos) ||
-          std::abs(glm::dot(n, DVec3(regions[b].point) - DVec3(regions[a].point))) > c.margin)
-        continue;
-      const uint32_t ra = root(parent, a), rb = root(parent, b);
-      if (ra == rb || size[ra] + size[rb] > kMaxFused) continue;
-      // Every corner of both within the ambiguity distance of the plane the fused occluder will
-      // have (its lowest region's, which is the set's root): a slit between two pieces a step
-      // apart, or a ray past a tilted piece's edge, is then one the backends may disagree on.
-      const uint32_t keep = std::min(ra, rb);
-      const DVec3 kn(regions[keep].normal), kp(regions[keep].point);
-      bool flat = true;
-      for (const uint32_t set : {ra, rb}) {
-        for (uint32_t x : members[set]) {
-          for (const auto& t : regions[x].triangles) {
-            for (const Vec3& q : t) flat &= std::abs(glm::dot(DVec3(q) - kp, kn)) <= tolerance;
-          }
-        }
-      }
-      if (!flat) continue;
-      // The two sets must not overlap (coincident duplicates would count twice).
-      bool overlaps = false;
-      for (uint32_t x : members[ra]) {
-        for (uint32_t y : members[rb]) {
-          if (!touch(box[x], box[y], 0.0f)) continue;
-          for (const auto& tx : regions[x].triangles) {
-            const auto fx = flatten(DVec3(regions[a].point), u, w, tx);
-            for (const auto& ty : regions[y].triangles) {
-              const auto fy = flatten(DVec3(regions[a].point), u, w, ty);
-              if (area_inside(fx, fy.data(), 3) >
-                  1e-7 * double(std::min(regions[x].area, regions[y].area)))
-                overlaps = true;
-            }
-          }
-        }
-      }
-      if (overlaps) continue;
-      const uint32_t gone = std::max(ra, rb);
-      parent[gone] = keep;
-      size[keep] += size[gone];
-      members[keep].insert(members[keep].end(), members[gone].begin(), members[gone].end());
-      members[gone].clear();
-    }
-  }
-  std::vector<uint32_t> roots;
-  for (uint32_t r = 0; r < regions.size(); ++r) {
-    if (root(parent, r) != r) continue;
-    std::sort(members[r].begin(), members[r].end());
-    roots.push_back(r);
-  }
-  c.occluders.resize(roots.size());
-  tbb::parallel_for(size_t(0), roots.size(), [&](size_t k) {
-    Occluder o = make_occluder(regions, members[roots[k]]);
-    const double mid = glm::dot(DVec3(h.bounds.center()) - o.origin, o.normal);
-    const double reach = glm::dot(DVec3(h.bounds.extent()) * 0.5, glm::abs(o.normal));
-    o.hides_behind = uint8_t((mid - reach < -c.margin ? 1 : 0) | (mid + reach > c.margin ? 2 : 0));
-    c.occluders[k] = std::move(o);
-  });
+  c.occluders = fuse_occluders(h, c.margin);
+  if (c.occluders.empty()) return c;
   for (const Occluder& o : c.occluders) c.occluder_boxes.push_back(o.box);
-  c.tree = make_receiver_tree(h);
+  const Triangles& t = h.triangles;
+  std::vector<Aabb> boxes(t.size());
+  std::vector<Vec3> centres(t.size());
+  for (size_t i = 0; i < t.size(); ++i)
+    boxes[i] = triangle_box(t.corners[i]), centres[i] = t.centroid(i);
+  c.tree = make_box_tree(boxes, centres, kLeafTriangles);
+  c.cullable.resize(c.tree.size());
+  for (size_t n = 0; n < c.tree.size(); ++n) {
+    uint8_t all = 1;
+    for (uint32_t k = c.tree.first[n]; k < c.tree.first[n] + c.tree.count[n]; ++k)
+      all &= uint8_t(h.objects[size_t(t.object[c.tree.order[k]])].receives_shadows);
+    c.cullable[n] = all;
+  }
   return c;
 }
 
@@ -540,29 +234,25 @@ struct Visit {
 
 // Appends the triangles of the subtree at `start` that are not hidden, depth first.
 void walk(const OcclusionCulling& c, const ShotSource& src, const ShotOccluders& so, Visit start,
-          std::vector<Visit>& stack, std::vector<uint32_t>& out) {
-  const ReceiverTree& tree = c.tree;
+          std::vector<std::pair<uint32_t, uint32_t>>& stack, std::vector<uint32_t>& out) {
+  const BoxTree& tree = c.tree;
   // A planar source lights nothing behind its plane (may_receive's test, on whole boxes, with
   // room for the rounding of either test: a box nearly in the plane is left to may_receive).
   const float front = 1e-6f * src.extent - so.margin;
-  stack.assign(1, start);
   int last = -1;
-  while (!stack.empty()) {
-    Visit v = stack.back();
-    stack.pop_back();
-    const Aabb& b = tree.box[v.node];
-    if (!src.roulette_reaches_box(b)) continue;
-    if (src.planar && highest_above(b, src.centroid, src.axis) <= front) continue;
-    if (v.mask != 0 && tree.cullable[v.node] && so.hidden(b, v.mask, last)) continue;
-    if (tree.leaf(v.node)) {
-      const uint32_t first = tree.first[v.node];
-      out.insert(out.end(), tree.order.begin() + first,
-                 tree.order.begin() + first + tree.count[v.node]);
-    } else {
-      stack.push_back({tree.right[v.node], v.mask});
-      stack.push_back({v.node + 1, v.mask});
-    }
-  }
+  walk_box_tree(
+      tree, start.node, start.mask, stack,
+      [&](uint32_t node, uint32_t& mask) {
+        const Aabb& b = tree.box[node];
+        if (!src.roulette_reaches_box(b)) return false;
+        if (src.planar && highest_above(b, src.centroid, src.axis) <= front) return false;
+        return !(mask != 0 && c.cullable[node] && so.hidden(b, mask, last));
+      },
+      [&](uint32_t node) {
+        const uint32_t first = tree.first[node];
+        out.insert(out.end(), tree.order.begin() + first,
+                   tree.order.begin() + first + tree.count[node]);
+      });
 }
 
 }  // namespace
@@ -570,7 +260,7 @@ void walk(const OcclusionCulling& c, const ShotSource& src, const ShotOccluders&
 void unhidden_triangles(const OcclusionCulling& c, const ShotSource& src,
                         std::vector<uint32_t>& out) {
   out.clear();
-  const ReceiverTree& tree = c.tree;
+  const BoxTree& tree = c.tree;
   if (tree.box.empty()) return;
   const ShotOccluders so = choose_occluders(c, src);
   // The top of the tree, a few levels down, shared between the threads in order.
@@ -589,7 +279,7 @@ void unhidden_triangles(const OcclusionCulling& c, const ShotSource& src,
   }
   std::vector<std::vector<uint32_t>> parts(top.size());
   tbb::parallel_for(size_t(0), top.size(), [&](size_t k) {
-    std::vector<Visit> stack;
+    std::vector<std::pair<uint32_t, uint32_t>> stack;
     walk(c, src, so, top[k], stack, parts[k]);
   });
   for (const std::vector<uint32_t>& p : parts) out.insert(out.end(), p.begin(), p.end());
