@@ -11,6 +11,7 @@
 #include "core/aabb.h"
 #include "core/error.h"
 #include "scene/description.h"
+#include "scene/light.h"
 
 namespace rad {
 
@@ -56,6 +57,8 @@ struct Hierarchy {
   std::vector<int32_t> roots;
   Triangles triangles;
   Aabb bounds;
+  /// The lights that are not surfaces (scene/light.h), in world space.
+  std::vector<Light> lights;
   uint32_t dropped_degenerate = 0;    // zero-area triangles removed while building
   std::optional<ModelSummary> model;  // the model file's materials and textures, if a model
 };
