@@ -14,6 +14,8 @@ void check_scene_input(const SceneInput& in) {
 }
 
 bool emits_light(const Hierarchy& h) {
+  for (const Light& l : h.lights)
+    if (l.intensity > 0.0f && max_component(l.colour) > 0.0f) return true;
   for (size_t t = 0; t < h.triangles.size(); ++t) {
     const Material& m = h.objects[size_t(h.triangles.object[t])].material;
     if (h.triangles.area[t] > 0.0f && max_component(m.emission) > 0.0f) return true;

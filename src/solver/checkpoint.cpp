@@ -22,7 +22,7 @@ namespace {
 constexpr char kMagic[8] = {'R', 'A', 'D', 'C', 'K', 'P', 'T', '\n'};
 // 2: vertices shared by copy; 3: kept shadow-ray answers counted; 4: vertex states apart from
 // the positions
-constexpr uint32_t kFormat = 7;
+constexpr uint32_t kFormat = 8;
 constexpr size_t kHeader = sizeof kMagic + sizeof(uint32_t) + 3 * sizeof(uint64_t);
 
 struct HistoryRecord {
@@ -49,6 +49,11 @@ uint64_t solve_fingerprint(const Hierarchy& h, const SolverOptions& o, BackendKi
     f.add(ob.material.reflectance).add(ob.material.emission);
     f.add(ob.casts_shadows).add(ob.receives_shadows).add(ob.influence).add(uint64_t(ob.lit.size()));
     for (const TriangleRange& r : ob.lit) f.add(r.first).add(r.count);
+  }
+  f.add(uint64_t(h.lights.size()));
+  for (const Light& l : h.lights) {
+    f.add(l.kind).add(l.position).add(l.direction).add(l.colour).add(l.intensity);
+    f.add(l.inner_cone).add(l.outer_cone).add(l.angular_diameter);
   }
   f.add(o.shadows).add(o.sample_grid).add(o.max_sample_grid).add(o.method);
   f.add(o.subdivision_threshold).add(o.midpoints).add(o.min_size).add(o.max_size);
@@ -80,6 +85,7 @@ void write_checkpoint(const std::string& path, const SolverState& s, uint64_t fi
   for (const ShotSource& src : s.shots.sources) write_shot(w, src);
   w.vec(s.shots.cluster_cost);
   w.vec(s.energy.cluster_balance);
+  w.vec(s.energy.light_unshot);
 
   const uint64_t checksum = Fingerprint().bytes(w.out.data(), w.out.size()).value();
   AtomicFile f(path);
@@ -163,13 +169,18 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   }
   const auto logged = r.pod<uint64_t>();
   std::vector<ShotSource> log;
-  for (uint64_t i = 0; i < logged; ++i) log.push_back(read_shot(r, s.scene.clusters.size()));
+  for (uint64_t i = 0; i < logged; ++i)
+    log.push_back(read_shot(r, s.scene.clusters.size(), s.solution.hierarchy->lights,
+                            s.solution.hierarchy->bounds));
   std::vector<double> cluster_cost;
   r.vec(cluster_cost);
   if (cluster_cost.size() > s.scene.clusters.size()) r.fail("more shot costs than clusters");
   std::vector<ShotBalance> balance;
   r.vec(balance);
   if (balance.size() > s.scene.clusters.size()) r.fail("more shot balances than clusters");
+  std::vector<Vec3> light_unshot;
+  r.vec(light_unshot);
+  if (light_unshot.size() != s.energy.light_unshot.size()) r.fail("another number of lights");
   if (!r.done()) r.fail("trailing bytes");
   if (shots < 0 || uint64_t(shots) < logged) r.fail("more shots logged than made");
 
@@ -191,6 +202,8 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   s.energy.cluster_retention.clear();
   for (const ShotBalance& b : balance) s.energy.cluster_retention.push_back(b.retention());
   s.energy.cluster_balance = std::move(balance);
+  s.energy.light_unshot = std::move(light_unshot);
+  update_light_unshot(s.energy);
   update_unshot_totals(s.energy, s.solution, s.scene.clusters, s.ownership.ranks);
 }
 

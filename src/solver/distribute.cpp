@@ -131,7 +131,7 @@ void share_shot_source(Ranks& ranks, size_t cluster_count, ShotSource& src, uint
   ranks.broadcast(w.out, int(owner));
   if (uint32_t(ranks.rank()) == owner) return;
   ByteReader in(w.out, 0, fmt::format("rank {}", owner), "message between ranks");
-  src = read_shot(in, cluster_count);
+  src = read_shot(in, cluster_count, {}, {});  // lights are never shared: every rank shoots them
 }
 
 }  // namespace rad

@@ -50,7 +50,7 @@ struct EnergyBalance {
   /// Per polygon: unshot energy, kept current. Negative after an edit lowers an emission or a
   /// reflectance (Chen 1990): shooter choice and convergence use its magnitude.
   std::vector<UnshotEnergy> unshot_energy;
-  double emitted_energy = 0.0;  // sum of area x mean-channel emission
+  double emitted_energy = 0.0;  // sum of area x mean-channel emission, and the lights' power
   /// What the unshot fraction and the fixed-point totals are relative to: the emitted energy,
   /// or, after an edit that left next to no emission, the emitted energy before it. Turning
   /// every light off leaves none (or a rounding leftover of either sign), yet their light must
@@ -82,9 +82,17 @@ struct EnergyBalance {
   /// (2^-64 of the total area): exact, so the same for any order of the shots that set it.
   DVec3 mean_reflectance{0.0};
   std::array<Fixed128, 3> lost_reflectance{};
+  /// Per light of the scene (Hierarchy::lights): what it has still to shoot per channel (its
+  /// colour until its shot, then 0), and its power per unit of colour (light_power,
+  /// light_source.h); the lights' part of the unshot energy, the sum of the two's products.
+  /// The same on every rank: every rank shoots every light.
+  std::vector<Vec3> light_unshot;
+  std::vector<double> light_power;
+  double light_unshot_energy = 0.0;
 
   double unshot_fraction() const {
-    return reference_energy > 0.0 ? unshot_abs_total / reference_energy : 0.0;
+    const double unshot = unshot_abs_total + light_unshot_energy;
+    return reference_energy > 0.0 ? unshot / reference_energy : (unshot > 0.0 ? 1.0 : 0.0);
   }
 };
 
@@ -150,6 +158,9 @@ void set_retention(EnergyBalance& e, const Solution& solution, const Clusters& c
 /// any split of the terms between the ranks.
 void exact_energy_sums(const EnergyBalance& e, Ranks* ranks,
                        std::span<const std::span<const double>> terms, std::span<double> sums);
+
+/// Sets e.light_unshot_energy from the lights' unshot colours and powers.
+void update_light_unshot(EnergyBalance& e);
 
 /// Cohen et al. 1988 ambient term: the unshot energy spread over the scene and reflected
 /// 1/(1 - mean reflectance) times. For display only; never added to stored radiosity.

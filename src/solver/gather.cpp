@@ -12,6 +12,7 @@
 
 #include "core/denormals.h"
 #include "solver/form_factor.h"
+#include "solver/light_source.h"
 
 namespace rad {
 
@@ -304,6 +305,39 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
   return visible * scale;
 }
 
+// gather_from_source for a light: its illuminance at x times what it shoots, times the part of
+// its shadow rays that reach it (one for a point or spot light, kSunRays for the sun; below the
+// intensity cut one stands for all, as for a surface).
+Vec3 gather_light(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const ShotSource& src,
+                  const VisibilityBackend& vis, const GatherSettings& st, GatherScratch& scratch) {
+  const Vec3 x = x_vertex + (centroid - x_vertex) * st.inset;
+  const float e = light_illuminance(src, x, n);
+  if (!(e > 0.0f)) {
+    ++scratch.stats.culled;
+    return Vec3(0.0f);
+  }
+  ++scratch.stats.vertex_evaluations;
+  const Vec3 gain = src.light_colour * e;
+  if (!st.shadows) return gain;
+  const size_t all = light_ray_count(src);
+  const bool cut = max_component(glm::abs(gain)) < st.cut;
+  const size_t rays = cut ? 1 : all;
+  if (cut) scratch.stats.intensity_cuts += all - 1;
+  const Vec3 from = off_surface(x, n, st.shadow_offset);
+  scratch.end_x.resize(rays), scratch.end_y.resize(rays), scratch.end_z.resize(rays);
+  for (size_t k = 0; k < rays; ++k) {
+    const Vec3 end = light_ray_end(src, from, k);
+    scratch.end_x[k] = end.x, scratch.end_y[k] = end.y, scratch.end_z[k] = end.z;
+  }
+  scratch.blocked.resize(rays);
+  const SegmentFan fan{from, scratch.end_x.data(), scratch.end_y.data(), scratch.end_z.data(),
+                       rays};
+  vis.occluded_fan(fan, std::span<uint8_t>(scratch.blocked.data(), rays), scratch.stats.rays);
+  size_t clear = 0;
+  for (size_t k = 0; k < rays; ++k) clear += scratch.blocked[k] ? 0 : 1;
+  return clear == rays ? gain : gain * (float(clear) / float(rays));
+}
+
 }  // namespace
 
 Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid,
@@ -312,6 +346,7 @@ Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroi
   // The roulette looks at the vertex itself, not the point moved inside its polygon: coplanar
   // polygons sharing a vertex make the same choice for it. Its cosine bounds allow for the move.
   assert(st.inset <= kRouletteSlack);
+  if (src.light >= 0) return gather_light(x_vertex, n, centroid, src, vis, st, scratch);
   const float w = src.roulette_weight(x_vertex, n, st.inset * glm::length(centroid - x_vertex));
   if (w == 0.0f) {
     ++scratch.stats.roulette;

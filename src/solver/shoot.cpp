@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "solver/light_source.h"
+
 namespace rad {
 
 GatherSettings gather_settings(const SolverState& s) {
@@ -23,12 +25,17 @@ GatherSettings receiver_settings(const GatherSettings& g, const SolverState& s, 
 }
 
 int32_t shooter_influence(const SolverState& s, const ShotSource& src) {
+  if (src.light >= 0) return -1;  // a light lights everything
   const Hierarchy& h = *s.solution.hierarchy;
   const uint32_t p = s.scene.clusters.polygons[s.scene.clusters.first[size_t(src.cluster)]];
   return h.objects[size_t(h.triangles.object[p])].influence;
 }
 
 bool may_receive(const SolverState& s, size_t p, const ShotSource& src) {
+  if (src.light >= 0) {
+    const Triangles& t = s.solution.hierarchy->triangles;
+    return light_reaches(src, t.corners[p], t.normal[p]);
+  }
   if (src.planar && s.scene.clusters.cluster_of[p] == uint32_t(src.cluster)) return false;
   if (!influence_reaches(*s.solution.hierarchy, shooter_influence(s, src), uint32_t(p)))
     return false;
@@ -60,11 +67,13 @@ const Receivers& shoot_to_receivers(SolverState& s, const ShotSource& src,
   const int32_t influence = shooter_influence(s, src);
   // The candidates: a Lights list's ranges, or the triangles not hidden behind a flat occluder
   // (occlusion_culling.h; built only when culling is on), or all.
+  // The sun is not culled: it lies beyond the planes of all occluders, in no box.
+  const bool sun = src.light >= 0 && src.emitter->kind == LightKind::Directional;
   std::vector<TriangleRange> ranges{{0, uint32_t(tris.size())}};
   const std::vector<uint32_t>* listed = nullptr;
   if (influence >= 0) {
     ranges = s.solution.hierarchy->objects[size_t(influence)].lit;
-  } else if (!s.scene.culling.empty()) {
+  } else if (!s.scene.culling.empty() && !sun) {
     unhidden_triangles(s.scene.culling, src, s.receivers.unhidden);
     s.stats.hidden += tris.size() - s.receivers.unhidden.size();
     listed = &s.receivers.unhidden;
@@ -97,9 +106,12 @@ const Receivers& shoot_to_receivers(SolverState& s, const ShotSource& src,
       work.push_back({p, v, std::min(nv, v + step), uint32_t(i)});
     }
   }
+  // A light shoots once: nothing to keep its answers for.
   KeptRays* const kept =
-      prepare_kept_rays(s.kept, src, uint64_t(s.shots.count) + 1, receivers, s.solution.mesh,
-                        s.scene.clusters.size(), s.options.kept_rays_bytes);
+      src.light >= 0
+          ? nullptr
+          : prepare_kept_rays(s.kept, src, uint64_t(s.shots.count) + 1, receivers, s.solution.mesh,
+                              s.scene.clusters.size(), s.options.kept_rays_bytes);
   parallel_gather(work.size(), 1, s.stats, [&](size_t begin, size_t end, GatherScratch& sc) {
     for (size_t i = begin; i != end; ++i) {
       const VertexRange& w = work[i];

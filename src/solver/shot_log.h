@@ -11,7 +11,7 @@ namespace rad {
 /// One line of the convergence history.
 struct ShotRecord {
   int64_t shot;            // 1-based
-  int32_t source;          // cluster that shot
+  int32_t source;          // cluster that shot, or -1 - i for light i (Hierarchy::lights)
   double seconds;          // since the solve began
   double unshot_fraction;  // unshot / emitted energy after the shot
 };

@@ -9,6 +9,7 @@
 
 #include "core/aabb.h"
 #include "core/math.h"
+#include "scene/light.h"
 
 namespace rad {
 
@@ -34,9 +35,20 @@ struct SampleLanes {
 };
 
 /// A cluster (solver/clusters.h) frozen as the source of one shot: its outline, its samples and
-/// their unshot radiosity.
+/// their unshot radiosity. Or a light of the scene (light >= 0, cluster -1): a point, spot or
+/// directional light (scene/light.h), whose gain at a point is its illuminance there
+/// (light_source.h).
 struct ShotSource {
   int32_t cluster = -1;
+  // The light that shoots (its index in Hierarchy::lights), what it shoots per channel (its
+  // colour, or an edit's change of it: the gain is that times its illuminance), the light
+  // itself, and for the sun the directions toward points of its disc, spread by area, and how
+  // far its shadow rays go (past the scene's bounds).
+  int32_t light = -1;
+  Vec3 light_colour{0.0f};
+  const Light* emitter = nullptr;
+  std::vector<Vec3> sun_directions;
+  float sun_reach = 0.0f;
   bool planar = true;  // a planar cluster: its own polygons cannot receive from it
   // Where receivers stand against the source's triangles (see receiver_side in gather.h).
   Vec3 centroid{0.0f}, axis{0.0f};

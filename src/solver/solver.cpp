@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "solver/distribute.h"
+#include "solver/light_source.h"
 #include "solver/refine.h"
 #include "solver/shoot.h"
 
@@ -212,18 +213,29 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
       s.scene.buried.found = true;
     }
   }
-  const std::optional<Shooter> shooter = choose_shooter(s);
-  if (!shooter) return std::nullopt;
-  const size_t c = size_t(shooter->cluster);
-
-  // The cluster's owner freezes it as the source (the one rank that holds its radiosity) and
-  // shares it with the other ranks.
+  // The lights shoot first, in order, each once (every rank knows them: nothing to share);
+  // then the cluster chosen.
   ShotSource src;
-  double shot = 0.0;  // its energy, signed (the owner's figure; 0 on the other ranks)
-  if (s.ownership.owns_cluster(c)) src = freeze_source(s, c, shooter->energy, shot);
-  if (s.ownership.ranks) {
-    share_shot_source(*s.ownership.ranks, s.scene.clusters.size(), src,
-                      s.ownership.cluster_owner[c]);
+  std::optional<Shooter> shooter;
+  double shot = 0.0;  // the cluster's energy, signed (the owner's figure; 0 on the other ranks)
+  const auto light = std::find_if(s.energy.light_unshot.begin(), s.energy.light_unshot.end(),
+                                  [](const Vec3& u) { return u != Vec3(0.0f); });
+  if (light != s.energy.light_unshot.end()) {
+    const int32_t i = int32_t(light - s.energy.light_unshot.begin());
+    src = make_light_source(s.solution.hierarchy->lights, i, *light, s.solution.hierarchy->bounds);
+    *light = Vec3(0.0f);
+    update_light_unshot(s.energy);
+  } else {
+    shooter = choose_shooter(s);
+    if (!shooter) return std::nullopt;
+    const size_t c = size_t(shooter->cluster);
+    // The cluster's owner freezes it as the source (the one rank that holds its radiosity) and
+    // shares it with the other ranks.
+    if (s.ownership.owns_cluster(c)) src = freeze_source(s, c, shooter->energy, shot);
+    if (s.ownership.ranks) {
+      share_shot_source(*s.ownership.ranks, s.scene.clusters.size(), src,
+                        s.ownership.cluster_owner[c]);
+    }
   }
   const bool major = src.major;
   const std::vector<uint32_t>& receivers = shoot_to_receivers(s, src, vis, major).polygons;
@@ -261,8 +273,11 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   refine_after_shot(s, src, vis, major, to_refine);
   if (src.major || s.options.log_minor_shots) s.shots.sources.push_back(std::move(src));
   tbb::parallel_for(size_t(0), refined.size(), [&](size_t j) { count(refined[j]); });
-  measure_retention(s, c, shot, s.ownership.owns_cluster(c) ? shooter->energy : 0.0, receivers,
-                    absorbed, unshot);
+  if (shooter) {
+    const size_t c = size_t(shooter->cluster);
+    measure_retention(s, c, shot, s.ownership.owns_cluster(c) ? shooter->energy : 0.0, receivers,
+                      absorbed, unshot);
+  }
   for (double a : absorbed) s.energy.absorbed_energy += a;
   // The totals and the clusters' energies follow the polygons the shot changed, not the scene.
   set_unshot_energies(s.energy, s.solution, s.scene.clusters, receivers, unshot);
@@ -272,15 +287,17 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   s.stats.refine_seconds += std::chrono::duration<double>(t2 - t1).count();
 
   // What this shot cost, for the next choice of shooter (over the ranks: the same on each).
-  int64_t gathered = 0;
-  for (uint32_t p : receivers) gathered += int64_t(s.solution.vertex_states[p].size());
-  if (s.ownership.ranks) s.ownership.ranks->sum(std::span<int64_t>(&gathered, 1));
-  s.shots.cluster_cost.resize(s.scene.clusters.size(), 0.0);
-  s.shots.cluster_cost[c] = double(gathered);
+  if (shooter) {
+    int64_t gathered = 0;
+    for (uint32_t p : receivers) gathered += int64_t(s.solution.vertex_states[p].size());
+    if (s.ownership.ranks) s.ownership.ranks->sum(std::span<int64_t>(&gathered, 1));
+    s.shots.cluster_cost.resize(s.scene.clusters.size(), 0.0);
+    s.shots.cluster_cost[size_t(shooter->cluster)] = double(gathered);
+  }
 
   ++s.shots.count;
-  ShotRecord r{s.shots.count, shooter->cluster, s.stats.shoot_seconds + s.stats.refine_seconds,
-               s.energy.unshot_fraction()};
+  ShotRecord r{s.shots.count, shooter ? shooter->cluster : -1 - src.light,
+               s.stats.shoot_seconds + s.stats.refine_seconds, s.energy.unshot_fraction()};
   s.shots.history.push_back(r);
   return r;
 }

@@ -8,6 +8,7 @@
 
 #include "mesh/sample_points.h"
 #include "mesh/subdivide.h"
+#include "solver/light_source.h"
 #include "visibility/segment.h"
 
 namespace rad {
@@ -86,6 +87,13 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
     energy.emitted_energy += energy.unshot_energy[t].sum;
     total_area += h.triangles.area[t];
   }
+  // The lights shoot first (solver.cpp), their power counted with the surfaces' emission.
+  for (const Light& l : h.lights) {
+    energy.light_unshot.push_back(l.colour);
+    energy.light_power.push_back(light_power(l, h.bounds));
+  }
+  update_light_unshot(energy);
+  energy.emitted_energy += energy.light_unshot_energy;
   energy.reference_energy = energy.emitted_energy;
   energy.total_area = total_area;
   energy.radiosity_scale = total_area > 0.0 ? float(energy.emitted_energy / total_area) : 1.0f;

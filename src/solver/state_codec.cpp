@@ -1,6 +1,9 @@
 #include "solver/state_codec.h"
 
 #include <algorithm>
+#include <cmath>
+
+#include "solver/light_source.h"
 
 namespace rad {
 
@@ -29,8 +32,10 @@ struct ShotHeader {
   float near_distance, single_distance, far_distance;
   Aabb box;
   float roulette_draw, roulette_peak, roulette_reach2;
+  int32_t light;  // a light's shot (ShotSource::light): rebuilt from the scene's light
+  Vec3 light_colour;
 };
-static_assert(sizeof(ShotHeader) == 128 && sizeof(Element) == 20 && sizeof(VertexState) == 48);
+static_assert(sizeof(ShotHeader) == 144 && sizeof(Element) == 20 && sizeof(VertexState) == 48);
 
 }  // namespace
 
@@ -54,7 +59,9 @@ void write_shot(ByteWriter& w, const ShotSource& s) {
                    s.box,
                    s.roulette_draw,
                    s.roulette_peak,
-                   s.roulette_reach2});
+                   s.roulette_reach2,
+                   s.light,
+                   s.light_colour});
   w.vec(s.edge_a), w.vec(s.edge_b), w.vec(s.interior);
   write_lanes(w, s.sample);
   w.vec(s.end_x), w.vec(s.end_y), w.vec(s.end_z);
@@ -62,8 +69,25 @@ void write_shot(ByteWriter& w, const ShotSource& s) {
   w.vec(s.fine_group_parent);
 }
 
-ShotSource read_shot(ByteReader& r, size_t clusters) {
+ShotSource read_shot(ByteReader& r, size_t clusters, const std::vector<Light>& lights,
+                     const Aabb& bounds) {
   const auto h = r.pod<ShotHeader>();
+  if (h.light >= 0) {
+    if (size_t(h.light) >= lights.size() || h.cluster != -1) r.fail("a shot from no light");
+    if (!std::isfinite(mean_component(h.light_colour))) r.fail("a light's colour not finite");
+    ShotSource s = make_light_source(lights, h.light, h.light_colour, bounds);
+    // The cluster's parts of the record are empty for a light.
+    std::vector<Vec3> none;
+    r.vec(none), r.vec(none), r.vec(none);
+    SampleLanes lanes;
+    read_lanes(r, lanes);
+    std::vector<float> ends;
+    r.vec(ends), r.vec(ends), r.vec(ends);
+    read_lanes(r, lanes);
+    std::vector<uint32_t> parents;
+    r.vec(parents);
+    return s;
+  }
   ShotSource s;
   if (h.cluster < 0 || size_t(h.cluster) >= clusters) r.fail("a shot from no cluster");
   s.cluster = h.cluster, s.planar = h.planar != 0, s.major = h.major != 0;

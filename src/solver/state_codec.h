@@ -76,7 +76,8 @@ class ByteReader {
 
 void write_shot(ByteWriter& w, const ShotSource& s);
 /// Throws rad::Error when the record is inconsistent; `clusters` bounds its cluster index.
-ShotSource read_shot(ByteReader& r, size_t clusters);
+ShotSource read_shot(ByteReader& r, size_t clusters, const std::vector<Light>& lights,
+                     const Aabb& bounds);
 
 /// A polygon's mesh, its vertex states and its vertices that copy another's gain (solver_state.h).
 void write_polygon(ByteWriter& w, const PolygonMesh& p, const std::vector<VertexState>& states,

@@ -86,6 +86,39 @@ TEST(Checkpoint, ResumedSolveEndsBitIdenticalToAnUninterruptedOne) {
   }
 }
 
+TEST(Checkpoint, ALitSceneResumedBetweenItsLightsShotsEndsBitIdentical) {
+  // Two lights besides the lamp: stopped after the first light's shot, the second is still to
+  // shoot; the log holds a light's shot, which new vertices gather again after the resume.
+  Hierarchy h = lit_box();
+  Light a;
+  a.name = "a", a.position = Vec3(0.3f, 0.5f, 0.8f), a.intensity = 2.0f;
+  Light b = a;
+  b.name = "b", b.kind = LightKind::Spot, b.position = Vec3(0.8f, 0.8f, 0.9f);
+  b.direction = glm::normalize(Vec3(-1.0f, -1.0f, -2.0f)), b.colour = Vec3(1.0f, 0.5f, 0.2f);
+  h.lights = {a, b};
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  const SolverState whole = solved(h, *vis, 12);
+  EXPECT_EQ(whole.shots.history[0].source, -1);
+  EXPECT_EQ(whole.shots.history[1].source, -2);
+  for (const int64_t stop : {1, 5}) {
+    const fs::path file = temp_file("rad-ckpt-lights");
+    const SolverState first = solved(h, *vis, stop);
+    const uint64_t id = solve_fingerprint(h, first.options, BackendKind::Embree);
+    write_checkpoint(file, first, id);
+    SolverState resumed = make_solver_state(h, whole.options);
+    read_checkpoint(file, resumed, id);
+    solve(resumed, *vis);
+    fs::remove(file);
+    ASSERT_EQ(resumed.shots.count, whole.shots.count);
+    EXPECT_TRUE(all_vertices(whole) == all_vertices(resumed)) << "stopped after " << stop;
+  }
+  // Another light is another solve.
+  Hierarchy moved = h;
+  moved.lights[1].intensity = 3.0f;
+  EXPECT_NE(solve_fingerprint(h, whole.options, BackendKind::Embree),
+            solve_fingerprint(moved, whole.options, BackendKind::Embree));
+}
+
 TEST(Checkpoint, EqualStatesWriteEqualFiles) {
   const Hierarchy h = lit_box();
   const auto vis = make_visibility_backend(BackendKind::Embree, h);
