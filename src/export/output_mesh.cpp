@@ -75,23 +75,31 @@ std::shared_ptr<const MeshGeometry> OutputMeshBuilder::update(const SolverState&
   return geometry_;
 }
 
-void OutputMeshBuilder::values(const SolverState& s, Vec3 ambient, std::vector<Vec3>& radiosity,
-                               std::vector<Vec3>& display) const {
-  radiosity.clear();
-  display.clear();
-  if (geometry_) radiosity.reserve(geometry_->position.size());
-  if (geometry_) display.reserve(geometry_->position.size());
+void OutputMeshBuilder::values(const SolverState& s, Vec3 ambient, OutputMesh& out) const {
+  std::vector<Vec3>& radiosity = out.radiosity;
+  std::vector<Vec3>& display = out.display;
+  std::vector<Vec3>& irradiance = out.irradiance;
+  radiosity.clear(), display.clear(), irradiance.clear();
+  const size_t count = geometry_ ? geometry_->position.size() : 0;
+  radiosity.reserve(count), display.reserve(count), irradiance.reserve(count);
+  auto h = [&](size_t p, uint32_t v) { return s.solution.vertex_states[p][v].irradiance; };
   for (size_t p = 0; p < polygons_.size(); ++p) {
     const size_t first = radiosity.size();
     const uint32_t n = uint32_t(polygons_[p].vertices);
-    for (uint32_t v = 0; v < n; ++v) radiosity.push_back(s.solution.radiosity(p, v));
+    for (uint32_t v = 0; v < n; ++v) {
+      radiosity.push_back(s.solution.radiosity(p, v));
+      irradiance.push_back(h(p, v));
+    }
     for (const auto& k : polygons_[p].faces.centroids) {
       radiosity.push_back((s.solution.radiosity(p, k[0]) + s.solution.radiosity(p, k[1]) +
                            s.solution.radiosity(p, k[2])) /
                           3.0f);
+      irradiance.push_back((h(p, k[0]) + h(p, k[1]) + h(p, k[2])) / 3.0f);
     }
-    for (const VertexRef& r : polygons_[p].faces.seam)
+    for (const VertexRef& r : polygons_[p].faces.seam) {
       radiosity.push_back(s.solution.radiosity(r.polygon, r.vertex));
+      irradiance.push_back(h(r.polygon, r.vertex));
+    }
     const Material& mat = s.solution.material_of(p);
     for (size_t v = first; v < radiosity.size(); ++v) {
       display.push_back(radiosity[v] + mat.reflectance * ambient);
@@ -109,8 +117,7 @@ OutputMesh make_output_mesh(const SolverState& s, bool ambient) {
   OutputMesh out;
   bool changed = false;
   out.geometry = builder.update(s, &changed);
-  builder.values(s, ambient ? ambient_radiosity(s.energy, s.solution) : Vec3(0.0f), out.radiosity,
-                 out.display);
+  builder.values(s, ambient ? ambient_radiosity(s.energy, s.solution) : Vec3(0.0f), out);
   return out;
 }
 

@@ -26,6 +26,9 @@ struct OutputMesh {
   std::shared_ptr<const MeshGeometry> geometry = std::make_shared<const MeshGeometry>();
   std::vector<Vec3> radiosity;  // linear radiosity B = E + rho H (the solver's value)
   std::vector<Vec3> display;    // radiosity shown: B, plus rho x ambient when asked
+  /// The light arriving, H of B = E + rho H (irradiance; illuminance in lux when the scene is
+  /// lit by photometric lights in metres), before any surface's reflectance.
+  std::vector<Vec3> irradiance;
 
   const std::vector<Vec3>& position() const { return geometry->position; }
   const std::vector<uint32_t>& indices() const { return geometry->indices; }
@@ -41,10 +44,10 @@ class OutputMeshBuilder {
   /// differs from the previous call's (the previous pointer is returned otherwise).
   std::shared_ptr<const MeshGeometry> update(const SolverState& s, bool* changed);
 
-  /// Per vertex of the last update's geometry: radiosity B (centroids: the mean of their three)
-  /// and the displayed value B + rho x `ambient` (rho: the polygon's reflectance).
-  void values(const SolverState& s, Vec3 ambient, std::vector<Vec3>& radiosity,
-              std::vector<Vec3>& display) const;
+  /// Per vertex of the last update's geometry, into out's radiosity, display and irradiance:
+  /// radiosity B (centroids: the mean of their three), the displayed value B + rho x `ambient`
+  /// (rho: the polygon's reflectance) and the irradiance H. Leaves out.geometry as it is.
+  void values(const SolverState& s, Vec3 ambient, OutputMesh& out) const;
 
   /// Forgets every polygon (after the state was replaced).
   void reset();

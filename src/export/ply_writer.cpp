@@ -20,11 +20,13 @@ void put(std::ostream& out, T v) {
 void write_ply(std::ostream& out, const OutputMesh& m, const ToneMap& tm, bool ascii) {
   out << "ply\n"
       << (ascii ? "format ascii 1.0\n" : "format binary_little_endian 1.0\n")
-      << "comment rad radiosity: rgb = display colour (sRGB), radiosity_* = linear radiosity\n"
+      << "comment rad radiosity: rgb = display colour (sRGB), radiosity_* = linear radiosity B, "
+         "irradiance_* = the light arriving H (B = E + rho H; lux with photometric lights)\n"
       << "element vertex " << m.position().size() << "\n"
       << "property float x\nproperty float y\nproperty float z\n"
       << "property uchar red\nproperty uchar green\nproperty uchar blue\n"
       << "property float radiosity_r\nproperty float radiosity_g\nproperty float radiosity_b\n"
+      << "property float irradiance_r\nproperty float irradiance_g\nproperty float irradiance_b\n"
       << "element face " << m.face_count() << "\n"
       << "property list uchar uint vertex_indices\n"
       << "end_header\n";
@@ -32,13 +34,15 @@ void write_ply(std::ostream& out, const OutputMesh& m, const ToneMap& tm, bool a
     uint8_t c[3];
     to_srgb8(m.display[v], tm, c);
     const Vec3 &p = m.position()[v], &b = m.radiosity[v];
+    const Vec3 h = v < m.irradiance.size() ? m.irradiance[v] : Vec3(0.0f);
     if (ascii) {
-      out << fmt::format("{} {} {} {} {} {} {} {} {}\n", p.x, p.y, p.z, c[0], c[1], c[2], b.x, b.y,
-                         b.z);
+      out << fmt::format("{} {} {} {} {} {} {} {} {} {} {} {}\n", p.x, p.y, p.z, c[0], c[1], c[2],
+                         b.x, b.y, b.z, h.x, h.y, h.z);
     } else {
       put(out, p.x), put(out, p.y), put(out, p.z);
       put(out, c[0]), put(out, c[1]), put(out, c[2]);
       put(out, b.x), put(out, b.y), put(out, b.z);
+      put(out, h.x), put(out, h.y), put(out, h.z);
     }
   }
   for (size_t f = 0; f < m.face_count(); ++f) {

@@ -9,6 +9,7 @@
 
 #include "core/atomic_file.h"
 #include "mesh/patch_mesh.h"
+#include "run/object_illuminance.h"
 #include "run/prepared_solve.h"
 
 namespace rad {
@@ -152,6 +153,15 @@ void write_stats_json(const std::string& path, const RunOptions& run, const Scen
                 {"shot_source_bytes_mean", broadcasts ? double(bytes) / double(broadcasts) : 0.0},
                 {"per_rank", per_rank}};
   }
+  // Per object: the light arriving (lux with photometric lights), least, mean, most.
+  json objects = json::array();
+  for (const ObjectIlluminance& o : object_illuminance(s)) {
+    objects.push_back({{"name", o.name},
+                       {"area", o.area},
+                       {"illuminance", {{"min", o.min}, {"mean", o.mean}, {"max", o.max}}}});
+  }
+  j["objects"] = objects;
+  j["lights"] = s.solution.hierarchy->lights.size();
   // Hex: JSON numbers are doubles to most readers.
   if (job_fingerprint != 0) j["job_fingerprint"] = fmt::format("{:016x}", job_fingerprint);
   AtomicFile f(path);

@@ -22,6 +22,7 @@
 #include "hierarchy/auto_hierarchy.h"
 #include "hierarchy/hierarchy.h"
 #include "mesh/patch_mesh.h"
+#include "run/object_illuminance.h"
 #include "run/output_files.h"
 #include "run/prepared_solve.h"
 #include "run/report.h"
@@ -302,6 +303,9 @@ SceneJobResult run_scene_job(const RunOptions& run, const SceneJob& job, Ranks* 
 
   write_job_outputs(run, job, state, stop, job_id, reports, start, times, say);
   if (!quiet) std::fputs(format_statistics(state, times.total).c_str(), stdout);
+  // A scene lit by lights has its light in lux: what a lighting designer looks at first.
+  if (!quiet && !state.solution.hierarchy->lights.empty())
+    std::fputs(format_illuminance(object_illuminance(state), 12).c_str(), stdout);
   return {stop, state.shots.count, count_vertices(state.solution.mesh),
           state.energy.unshot_fraction(), times.total};
 }

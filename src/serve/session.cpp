@@ -233,7 +233,7 @@ void Session::publish() {
   if (geometry_changed) ++mesh_version_;
   builder_.values(state_,
                   options_.ambient ? ambient_radiosity(state_.energy, state_.solution) : Vec3(0.0f),
-                  snap->mesh.radiosity, snap->mesh.display);
+                  snap->mesh);
   bool stop_requested = false;
   {
     std::lock_guard lock(mutex_);

@@ -163,7 +163,7 @@ bool complete_ply(const fs::path& p, size_t* vertices) {
   std::sscanf(data.c_str() + data.find("element vertex"), "element vertex %zu", &v);
   std::sscanf(data.c_str() + data.find("element face"), "element face %zu", &f);
   *vertices = v;
-  return data.size() == end + 11 + v * 27 + f * 13;  // 3+3 floats+3 bytes; 1 byte + 3 uints
+  return data.size() == end + 11 + v * 39 + f * 13;  // 3+3+3 floats+3 bytes; 1 byte + 3 uints
 }
 
 TEST(CommandLine, ShardIsIOfNOrTheSlurmArrayTask) {

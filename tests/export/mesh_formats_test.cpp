@@ -33,6 +33,7 @@ testing::MeshParts sample_mesh() {
       Vec3(0.1f, 0.2f, 0.3f),  Vec3(1.0f, 0.5f, 0.25f),  Vec3(2.0f, 3.0f, 4.0f), Vec3(0.0f),
       Vec3(12.0f, 8.0f, 3.0f), Vec3(0.01f, 0.02f, 0.7f), Vec3(0.5f, 0.5f, 0.5f)};
   for (const Vec3& b : m.radiosity) m.display.push_back(b + Vec3(0.05f, 0.03f, 0.01f));
+  for (const Vec3& b : m.radiosity) m.irradiance.push_back(b * 2.0f + Vec3(0.0f, 0.5f, 1.0f));
   m.indices = {0, 1, 2, 0, 2, 3, 4, 5, 6};
   m.face_polygon = {0, 0, 1};
   return m;
@@ -58,7 +59,7 @@ Vec3 srgb_unit(const Vec3& display) {
 // ---- PLY: a small reader for the properties rad writes --------------------------------------
 
 struct PlyData {
-  std::vector<std::array<float, 3>> xyz, radiosity;
+  std::vector<std::array<float, 3>> xyz, radiosity, irradiance;
   std::vector<std::array<int, 3>> rgb;
   std::vector<std::vector<uint32_t>> faces;
 };
@@ -95,24 +96,35 @@ PlyData read_ply(const std::string& path) {
       EXPECT_EQ(line, "property list uchar uint vertex_indices");
     }
   }
-  const std::vector<std::string> expected = {
-      "float x",    "float y",           "float z",           "uchar red",        "uchar green",
-      "uchar blue", "float radiosity_r", "float radiosity_g", "float radiosity_b"};
+  const std::vector<std::string> expected = {"float x",
+                                             "float y",
+                                             "float z",
+                                             "uchar red",
+                                             "uchar green",
+                                             "uchar blue",
+                                             "float radiosity_r",
+                                             "float radiosity_g",
+                                             "float radiosity_b",
+                                             "float irradiance_r",
+                                             "float irradiance_g",
+                                             "float irradiance_b"};
   EXPECT_EQ(vprops, expected);
   const bool ascii = format == "ascii";
   EXPECT_TRUE(ascii || format == "binary_little_endian");
   PlyData d;
   for (size_t v = 0; v < nv; ++v) {
-    std::array<float, 3> p, b;
+    std::array<float, 3> p, b, h;
     std::array<int, 3> c;
     if (ascii) {
-      in >> p[0] >> p[1] >> p[2] >> c[0] >> c[1] >> c[2] >> b[0] >> b[1] >> b[2];
+      in >> p[0] >> p[1] >> p[2] >> c[0] >> c[1] >> c[2] >> b[0] >> b[1] >> b[2] >> h[0] >> h[1] >>
+          h[2];
     } else {
       for (float& x : p) x = read_binary<float>(in);
       for (int& x : c) x = read_binary<uint8_t>(in);
       for (float& x : b) x = read_binary<float>(in);
+      for (float& x : h) x = read_binary<float>(in);
     }
-    d.xyz.push_back(p), d.rgb.push_back(c), d.radiosity.push_back(b);
+    d.xyz.push_back(p), d.rgb.push_back(c), d.radiosity.push_back(b), d.irradiance.push_back(h);
   }
   for (size_t f = 0; f < nf; ++f) {
     int n = 0;
@@ -148,6 +160,7 @@ void check_ply(const std::string& path, const testing::MeshParts& m, float tol) 
       EXPECT_NEAR(d.xyz[v][size_t(k)], m.position[v][k], tol);
       EXPECT_EQ(d.rgb[v][size_t(k)], int(c[k]));
       EXPECT_NEAR(d.radiosity[v][size_t(k)], m.radiosity[v][k], tol);
+      EXPECT_NEAR(d.irradiance[v][size_t(k)], m.irradiance[v][k], tol);
     }
   }
   ASSERT_EQ(d.faces.size(), m.face_count());

@@ -9,7 +9,7 @@
 namespace rad::testing {
 
 struct MeshParts {
-  std::vector<Vec3> position, radiosity, display;
+  std::vector<Vec3> position, radiosity, display, irradiance;
   std::vector<uint32_t> indices;
   std::vector<int32_t> face_polygon;
 
@@ -20,6 +20,7 @@ struct MeshParts {
         std::make_shared<const MeshGeometry>(MeshGeometry{position, indices, face_polygon});
     m.radiosity = radiosity;
     m.display = display;
+    m.irradiance = irradiance;
     return m;
   }
 };

@@ -17,10 +17,16 @@ void expect_same_as_a_whole_build(const OutputMeshBuilder& builder, const MeshGe
   EXPECT_EQ(g.position, want.position());
   EXPECT_EQ(g.indices, want.indices());
   EXPECT_EQ(g.face_polygon, want.face_polygon());
-  std::vector<Vec3> radiosity, display;
-  builder.values(s, ambient_radiosity(s.energy, s.solution), radiosity, display);
-  EXPECT_EQ(radiosity, want.radiosity);
-  EXPECT_EQ(display, want.display);
+  OutputMesh got;
+  builder.values(s, ambient_radiosity(s.energy, s.solution), got);
+  EXPECT_EQ(got.radiosity, want.radiosity);
+  EXPECT_EQ(got.display, want.display);
+  EXPECT_EQ(got.irradiance, want.irradiance);
+  ASSERT_EQ(got.irradiance.size(), got.radiosity.size());
+  // B = E + rho H at the first polygon's own vertices, which come first.
+  const Material& m = s.solution.material_of(0);
+  for (uint32_t v = 0; v < s.solution.mesh.polygons[0].vertex_count(); ++v)
+    EXPECT_EQ(got.radiosity[v], m.emission + m.reflectance * got.irradiance[v]);
 }
 
 TEST(OutputMesh, TheIncrementalBuildIsTheWholeBuildShotAfterShot) {
