@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# The manual page (docs/rad.1) follows the command line: every option that `rad --help`,
+# `rad batch --help`, `rad serve --help` and `rad convert --help` list is documented there, every
+# --option the page names is one some mode takes, every exit status of `rad --help` is in its
+# EXIT STATUS section, and groff formats it without a warning.
+#   man_page_test.sh RAD docs/rad.1
+set -euo pipefail
+rad=$1 page=$2
+d=$(mktemp -d)
+trap 'rm -rf "$d"' EXIT
+status=0
+
+for mode in "" batch serve convert; do
+  # shellcheck disable=SC2086
+  "$rad" $mode --help >"$d/help"
+  # Option lines: two spaces, then -x,--name or --name.
+  grep -oE '^  (-[a-zA-Z],)?--[a-z][a-z0-9-]*' "$d/help" | grep -oE -- '--[a-z0-9-]+' >>"$d/options"
+done
+sort -u "$d/options" -o "$d/options"
+[ "$(wc -l <"$d/options")" -ge 30 ] || { echo "too few options read from --help"; exit 1; }
+
+# The options the page names (in roff a hyphen in an option is written \-).
+grep -oE '\\-\\-[a-z][a-z0-9\\-]*[a-z0-9]' "$page" | sed 's/\\-/-/g' | sort -u >"$d/named"
+while read -r option; do
+  grep -qxF -- "$option" "$d/named" || { echo "not in the man page: $option"; status=1; }
+done <"$d/options"
+while read -r option; do
+  grep -qxF -- "$option" "$d/options" || { echo "the man page names $option, which no mode takes"; status=1; }
+done <"$d/named"
+
+# Exit statuses: the numbers of the "Exit status:" block of rad --help.
+"$rad" --help | sed -n '/^Exit status:/,$p' | grep -oE '(^| )[0-9]+( |,|$)' | tr -d ' ,' |
+  sort -u >"$d/codes"
+[ "$(wc -l <"$d/codes")" -ge 4 ] || { echo "too few exit statuses read from rad --help"; exit 1; }
+sed -n '/^\.SH EXIT STATUS/,/^\.SH /p' "$page" >"$d/exit"
+while read -r code; do
+  grep -qE "^\.BR? ([0-9]+ \", \" )?$code( |$)|^\.BR? $code\b" "$d/exit" ||
+    { echo "exit status $code is not in the man page's EXIT STATUS"; status=1; }
+done <"$d/codes"
+
+if command -v groff >/dev/null; then
+  warnings=$(groff -man -Tutf8 -ww -z "$page" 2>&1)
+  [ -z "$warnings" ] || { echo "groff warns: $warnings"; status=1; }
+fi
+
+((status == 0)) && echo "$(wc -l <"$d/options") options and exit statuses $(tr '\n' ' ' <"$d/codes")documented"
+exit $status
