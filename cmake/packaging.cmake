@@ -8,7 +8,7 @@
 #   lib/rad/web -> ../../share/rad/web
 #   share/rad/web/node_modules/...   three.js and lil-gui, the modules of rad serve's page
 #   share/rad/scenes/                the bundled scenes (with their OFF files)
-#   share/man/man1/rad.1.gz          the manual page (docs/rad.1, the project version filled in)
+#   share/man/man1/rad.1.gz, rad-gen.1.gz  the manual pages (docs/*.1, the project version in)
 #   share/doc/rad/                   README.md, ARCHITECTURE.md and docs/ (pages and pictures)
 #
 # rad serve's page is compiled into rad; the three.js and lil-gui modules it hands to the browser
@@ -66,26 +66,29 @@ install(CODE "
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenes/ DESTINATION ${rad_data_dir}/scenes
         PATTERN bad EXCLUDE PATTERN reference EXCLUDE)
 
-# The manual page: docs/rad.1 with the project version (the one `rad --version` prints) written
-# into its .TH line, compressed as Debian keeps manual pages. Made when CMake configures, and
-# again whenever docs/rad.1 changes.
-set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/docs/rad.1)
-file(READ ${PROJECT_SOURCE_DIR}/docs/rad.1 rad_man)
-string(REGEX REPLACE "\n\\.TH RAD 1 \"([^\"]*)\" \"rad [^\"]*\"" "\n.TH RAD 1 \"\\1\" \"rad ${PROJECT_VERSION}\""
-       rad_man "${rad_man}")
-set(rad_man_page ${PROJECT_BINARY_DIR}/man/rad.1)
-file(WRITE ${rad_man_page}.new "${rad_man}")
-file(COPY_FILE ${rad_man_page}.new ${rad_man_page} ONLY_IF_DIFFERENT)
+# The manual pages, rad(1) and rad-gen(1): docs/NAME.1 with the project version (the one
+# `rad --version` prints) written into its .TH line, compressed as Debian keeps manual pages.
+# Made when CMake configures, and again whenever a page changes.
 find_program(RAD_GZIP gzip)
-if(RAD_GZIP)
-  execute_process(COMMAND ${RAD_GZIP} -9nf -k ${rad_man_page} RESULT_VARIABLE rad_gzip_status)
-  if(NOT rad_gzip_status EQUAL 0)
-    message(FATAL_ERROR "gzip ${rad_man_page} failed")
+foreach(rad_page rad rad-gen)
+  set(rad_man_source ${PROJECT_SOURCE_DIR}/docs/${rad_page}.1)
+  set(rad_man_made ${PROJECT_BINARY_DIR}/man/${rad_page}.1)
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${rad_man_source})
+  file(READ ${rad_man_source} rad_man_text)
+  string(REGEX REPLACE "\n\\.TH ([^ ]+) 1 \"([^\"]*)\" \"rad [^\"]*\""
+         "\n.TH \\1 1 \"\\2\" \"rad ${PROJECT_VERSION}\"" rad_man_text "${rad_man_text}")
+  file(WRITE ${rad_man_made}.new "${rad_man_text}")
+  file(COPY_FILE ${rad_man_made}.new ${rad_man_made} ONLY_IF_DIFFERENT)
+  if(RAD_GZIP)
+    execute_process(COMMAND ${RAD_GZIP} -9nf -k ${rad_man_made} RESULT_VARIABLE rad_gzip_status)
+    if(NOT rad_gzip_status EQUAL 0)
+      message(FATAL_ERROR "gzip ${rad_man_made} failed")
+    endif()
+    install(FILES ${rad_man_made}.gz DESTINATION ${rad_man_dir})
+  else()
+    install(FILES ${rad_man_made} DESTINATION ${rad_man_dir})
   endif()
-  install(FILES ${rad_man_page}.gz DESTINATION ${rad_man_dir})
-else()
-  install(FILES ${rad_man_page} DESTINATION ${rad_man_dir})
-endif()
+endforeach()
 
 # Documentation: the README and the pages it links, as they sit in the source tree.
 install(FILES ${PROJECT_SOURCE_DIR}/README.md ${PROJECT_SOURCE_DIR}/ARCHITECTURE.md

@@ -29,7 +29,8 @@ have_modules=0
 # ROOT/usr holds an installation: check it and run its programs.
 check_installed_tree() {
   local usr=$1/usr
-  for f in bin/rad bin/rad-gen lib/rad/rad share/man/man1/rad.1.gz share/doc/rad/README.md \
+  for f in bin/rad bin/rad-gen lib/rad/rad share/man/man1/rad.1.gz share/man/man1/rad-gen.1.gz \
+      share/doc/rad/README.md \
       share/doc/rad/docs/options.md share/doc/rad/docs/install.md \
       share/rad/scenes/cornell_box.des share/rad/scenes/original_style.des \
       share/rad/scenes/off/floor.off; do
@@ -46,13 +47,16 @@ check_installed_tree() {
   echo "installed rad --version: $got"
 
   # The manual page carries the same version and formats without a warning.
-  gzip -dc "$usr/share/man/man1/rad.1.gz" | grep -q "^\.TH RAD 1 \"[^\"]*\" \"rad $version\"" ||
-    fail "the installed man page's .TH line does not say rad $version"
-  if command -v groff >/dev/null; then
-    local warnings
-    warnings=$(gzip -dc "$usr/share/man/man1/rad.1.gz" | groff -man -Tutf8 -ww -z 2>&1)
-    [ -z "$warnings" ] || fail "groff warns on the installed man page: $warnings"
-  fi
+  local page warnings
+  for page in rad rad-gen; do
+    gzip -dc "$usr/share/man/man1/$page.1.gz" |
+      grep -q "^\.TH [A-Z\\-]* 1 \"[^\"]*\" \"rad $version\"" ||
+      fail "the installed $page.1's .TH line does not say rad $version"
+    if command -v groff >/dev/null; then
+      warnings=$(gzip -dc "$usr/share/man/man1/$page.1.gz" | groff -man -Tutf8 -ww -z 2>&1)
+      [ -z "$warnings" ] || fail "groff warns on the installed $page.1: $warnings"
+    fi
+  done
 
   # A bundled scene checked, and one solved and rendered from its installed OFF files.
   "$usr/bin/rad" --check "$usr/share/rad/scenes/cornell_box.des" >check.txt ||
@@ -147,7 +151,8 @@ case $mode in
     [ -n "$(dpkg-deb -f "$deb" Maintainer)" ] || fail "no Maintainer"
     dpkg-deb -c "$deb" >contents.txt
     for f in './usr/bin/rad -> ../lib/rad/rad' ./usr/bin/rad-gen ./usr/lib/rad/rad \
-        ./usr/share/man/man1/rad.1.gz ./usr/share/rad/scenes/cornell_box.des \
+        ./usr/share/man/man1/rad.1.gz ./usr/share/man/man1/rad-gen.1.gz \
+        ./usr/share/rad/scenes/cornell_box.des \
         ./usr/share/doc/rad/README.md; do
       grep -qF " $f" contents.txt || fail "the package does not hold $f"
     done
