@@ -87,8 +87,9 @@ CameraFrame camera_frame(const Camera& c, float aspect) {
 }
 
 std::string camera_spec(const Camera& c) {
-  return fmt::format("{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.4g}", c.eye.x, c.eye.y, c.eye.z,
-                     c.target.x, c.target.y, c.target.z, c.fov_y_deg);
+  // The shortest text that reads back to the same floats: the printed camera gives the image.
+  return fmt::format("{},{},{},{},{},{},{}", c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y,
+                     c.target.z, c.fov_y_deg);
 }
 
 Camera default_camera(std::span<const Vec3> positions, std::span<const uint32_t> indices,

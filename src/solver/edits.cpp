@@ -6,10 +6,12 @@
 #include "mesh/subdivide.h"
 #include "solver/refine.h"
 #include "solver/shoot.h"
+#include "solver/solver.h"
 
 namespace rad {
 
 void set_material(SolverState& s, int32_t object, const Material& m, const VisibilityBackend& vis) {
+  find_buried_vertices_once(s, vis);  // the vertices an edit makes must know where to gather
   const Hierarchy& h = *s.solution.hierarchy;
   if (!is_pure(h, object)) {
     throw Error(fmt::format("object {} is not a Pure", object));
@@ -46,6 +48,7 @@ void set_material(SolverState& s, int32_t object, const Material& m, const Visib
 }
 
 size_t force_subdivide(SolverState& s, int32_t polygon, const VisibilityBackend& vis) {
+  find_buried_vertices_once(s, vis);
   PolygonMesh& m = s.solution.mesh.polygons[size_t(polygon)];
   const uint32_t made_before = uint32_t(m.vertex_count());
   std::vector<VertexState>& vs = s.solution.vertex_states[size_t(polygon)];
@@ -60,7 +63,7 @@ size_t force_subdivide(SolverState& s, int32_t polygon, const VisibilityBackend&
     ++s.stats.subdivisions;
   }
   vs.resize(m.vertex_count());
-  if (s.scene.buried.found) {
+  if (s.scene.buried.found && s.options.shadows) {
     find_buried_vertices(s.solution.hierarchy->triangles, size_t(polygon), m, made_before, vis,
                          buried_probe(s.scene), s.scene.buried.moved[size_t(polygon)],
                          s.stats.rays);

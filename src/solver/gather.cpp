@@ -254,7 +254,10 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
   const float scale = ff ? (weight_sum > 0.0f ? *ff / weight_sum : 0.0f) : 1.0f;
 
   // Visibility of the active samples: traced, or all visible without shadows or below the cut.
-  const bool cut = max_component(glm::abs(unoccluded * scale)) < st.cut;  // |.|: negative edits
+  // The cut weighs the coarse samples, which say nothing of the fine points' EQ 7 (every coarse
+  // weight may be 0 where fine points face the receiver): there every stratum is traced.
+  const bool cut =
+      !fine_eq7 && max_component(glm::abs(unoccluded * scale)) < st.cut;  // |.|: negative edits
   if (st.shadows && cut && na > 0) {
     // Below the cut one ray, to the sample that weighs most, stands for all: a gain taken
     // unoccluded would go through walls, and in a building many small shots add up such gains

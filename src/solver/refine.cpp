@@ -171,7 +171,7 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
           for (uint32_t e : check[i]) consider(e);
         }
         // The new vertices inside solids, before any of them gathers (step 3).
-        if (s.scene.buried.found) {
+        if (s.scene.buried.found && s.options.shadows) {
           find_buried_vertices(tris, p, m, made_before, vis, buried_probe(s.scene),
                                s.scene.buried.moved[p], probes[i]);
         }

@@ -200,9 +200,7 @@ void measure_retention(SolverState& s, size_t c, double shot, double magnitude,
 
 }  // namespace
 
-std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
-  const auto t0 = std::chrono::steady_clock::now();
-  // Before the first shot (or the first after a checkpoint was restored): a backend is at hand.
+void find_buried_vertices_once(SolverState& s, const VisibilityBackend& vis) {
   // Without shadows nothing blocks a buried vertex's view, and it gathers where it is.
   if (!s.scene.buried.found) {
     if (s.options.shadows) {
@@ -213,6 +211,11 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
       s.scene.buried.found = true;
     }
   }
+}
+
+std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
+  const auto t0 = std::chrono::steady_clock::now();
+  find_buried_vertices_once(s, vis);
   // The lights shoot first, in order, each once (every rank knows them: nothing to share);
   // then the cluster chosen.
   ShotSource src;

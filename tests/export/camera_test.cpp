@@ -135,6 +135,16 @@ TEST(Camera, SpecIsWhatParseCameraReads) {
   EXPECT_EQ(d.eye, c.eye);
   EXPECT_EQ(d.target, c.target);
   EXPECT_EQ(d.fov_y_deg, c.fov_y_deg);
+  // Values of every digit (a default camera's eye, a field of view from an arctangent) read back
+  // to the same floats: the printed camera makes the same image.
+  Camera e;
+  e.eye = Vec3(2.2857143f, -0.1f / 3.0f, 1e-7f);
+  e.target = Vec3(1.0f / 7.0f, 123456.789f, -9.87654321f);
+  e.fov_y_deg = std::atan(0.3f) * 114.59156f;
+  const Camera f = parse_camera(camera_spec(e));
+  EXPECT_EQ(f.eye, e.eye);
+  EXPECT_EQ(f.target, e.target);
+  EXPECT_EQ(f.fov_y_deg, e.fov_y_deg);
 }
 
 TEST(Camera, DefaultPrefersTheOpenSide) {

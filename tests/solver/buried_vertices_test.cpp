@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "scene_builder.h"
+#include "solver/edits.h"
 #include "solver/solver.h"
 
 namespace rad {
@@ -127,6 +128,26 @@ TEST_P(BuriedVertexTest, ASunkCornerGathersWhatTheBoardGetsBesideTheSolid) {
   EXPECT_GT(m.positions[1].x, 0.995f);
   EXPECT_GT(open, 0.05f);
   EXPECT_GT(sunk, 0.5f * open) << "a corner inside the panel gathers as if outside it";
+}
+
+// Without shadows nothing blocks a buried vertex's view: no vertex moves, those made by
+// refinement or by an edit included, and a restored checkpoint has none to forget.
+TEST(BuriedVertices, WithoutShadowsNoVertexMovesNotEvenOneMadeLater) {
+  const Hierarchy h = board_and([](SceneDescription& d) {
+    add_solid_box(d, "panel", {0.995f, -0.5f, -0.5f}, {1.035f, 1.5f, 0.5f});
+    testing::add_quad(d, "lamp", {0.2f, 0.2f, 1}, {0.2f, 0.8f, 1}, {0.8f, 0.8f, 1}, {0.8f, 0.2f, 1},
+                      Vec3(0), Vec3(1));
+  });
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  SolverOptions o;
+  o.shadows = false;
+  o.max_shots = 6;
+  SolverState s = make_solver_state(h, o);
+  solve(s, *vis);
+  force_subdivide(s, 0, *vis);
+  ASSERT_TRUE(s.scene.buried.found);
+  for (size_t p = 0; p < s.scene.buried.moved.size(); ++p)
+    EXPECT_TRUE(s.scene.buried.moved[p].empty()) << "polygon " << p;
 }
 
 INSTANTIATE_TEST_SUITE_P(AllBackends, BuriedVertexTest,
