@@ -49,8 +49,8 @@ size_t peak_memory_bytes() {
 
 void write_stats_json(const std::string& path, const RunOptions& run, const SceneJob& job,
                       const SolverState& s, StopReason stop, const RunTimes& t,
-                      const SeamReport& seams, uint64_t job_fingerprint,
-                      const std::vector<RankReport>& ranks) {
+                      const SeamReport& seams, const std::optional<Camera>& camera,
+                      uint64_t job_fingerprint, const std::vector<RankReport>& ranks) {
   using nlohmann::json;
   const VisibilityStats& r = s.stats.rays;
   const Vec3 ambient = ambient_radiosity(s.energy, s.solution);
@@ -162,6 +162,8 @@ void write_stats_json(const std::string& path, const RunOptions& run, const Scen
   }
   j["objects"] = objects;
   j["lights"] = s.solution.hierarchy->lights.size();
+  // The camera the images were rendered through, as --camera takes it (null: no image).
+  j["camera"] = camera ? json(camera_spec(*camera)) : json(nullptr);
   // Hex: JSON numbers are doubles to most readers.
   if (job_fingerprint != 0) j["job_fingerprint"] = fmt::format("{:016x}", job_fingerprint);
   AtomicFile f(path);

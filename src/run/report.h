@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "export/camera.h"
 #include "export/seams.h"
 #include "run/run_options.h"
 #include "run/scene_job.h"
@@ -29,8 +30,8 @@ std::string format_statistics(const SolverState& s, double elapsed_seconds);
 /// Writes the JSON statistics (schema "rad-stats", version 1; see README) atomically.
 void write_stats_json(const std::string& path, const RunOptions& run, const SceneJob& job,
                       const SolverState& s, StopReason stop, const RunTimes& times,
-                      const SeamReport& seams, uint64_t job_fingerprint = 0,
-                      const std::vector<RankReport>& ranks = {});
+                      const SeamReport& seams, const std::optional<Camera>& camera = {},
+                      uint64_t job_fingerprint = 0, const std::vector<RankReport>& ranks = {});
 
 /// The "job_fingerprint" a stats file was written with (rad batch's record that a scene's
 /// outputs are complete), or nothing when the file is missing, unreadable or has none.

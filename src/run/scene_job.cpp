@@ -232,15 +232,16 @@ void write_job_outputs(const RunOptions& run, const SceneJob& job, const SolverS
   const auto t = Clock::now();
   const OutputMesh mesh = make_output_mesh(state, job.outputs.ambient);
   StagedFiles files;
-  write_outputs(mesh, job.outputs,
-                scene_tone_map(state, mesh.display, job.outputs.tonemap, job.outputs.exposure), say,
-                files);
+  const std::optional<Camera> camera = write_outputs(
+      mesh, job.outputs,
+      scene_tone_map(state, mesh.display, job.outputs.tonemap, job.outputs.exposure), say, files);
   times.write = since(t);
   times.total = since(start);
   if (!job.stats_json.empty()) {
     files.write(job.stats_json, [&](const std::string& path) {
       write_stats_json(path, run, job, state, stop, times,
-                       measure_seams(mesh, state.solution.hierarchy->triangles), job_id, reports);
+                       measure_seams(mesh, state.solution.hierarchy->triangles), camera, job_id,
+                       reports);
     });
   }
   files.commit();

@@ -15,8 +15,10 @@ void check_outputs(const OutputOptions& o) {
   for (const std::string& image : o.images) check_writable(image), check_image_extension(image);
 }
 
-void write_outputs(const OutputMesh& mesh, const OutputOptions& o, const ToneMap& tone,
-                   const std::function<void(const std::string&)>& say, StagedFiles& files) {
+std::optional<Camera> write_outputs(const OutputMesh& mesh, const OutputOptions& o,
+                                    const ToneMap& tone,
+                                    const std::function<void(const std::string&)>& say,
+                                    StagedFiles& files) {
   if (!o.mesh.empty()) {
     say(fmt::format("Writing results in file {}", o.mesh));
     MeshFileOptions mo;
@@ -24,7 +26,7 @@ void write_outputs(const OutputMesh& mesh, const OutputOptions& o, const ToneMap
     mo.tone = tone;
     files.write(o.mesh, [&](const std::string& path) { write_mesh_file(path, mesh, mo); });
   }
-  if (o.images.empty()) return;
+  if (o.images.empty()) return std::nullopt;
   const RenderOptions ro{o.image_width, o.image_height};
   const Camera camera = o.camera ? *o.camera
                                  : default_camera(mesh.position(), mesh.indices(),
@@ -45,6 +47,7 @@ void write_outputs(const OutputMesh& mesh, const OutputOptions& o, const ToneMap
     say(fmt::format("Writing image {}", path));
     files.write(path, [&](const std::string& staged) { write_image_file(staged, image, tone); });
   }
+  return camera;
 }
 
 }  // namespace rad

@@ -2,8 +2,10 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 
+#include "export/camera.h"
 #include "export/output_mesh.h"
 #include "export/tonemap.h"
 #include "run/output_files.h"
@@ -18,7 +20,10 @@ void check_outputs(const OutputOptions& o);
 /// Writes o.mesh and every o.images from `mesh`, shown with `tone`, into `files` (which the
 /// caller commits, with any other output of the run); images through o.camera (or
 /// default_camera) at o.image_width x o.image_height. `say` is told each file's name first.
-void write_outputs(const OutputMesh& mesh, const OutputOptions& o, const ToneMap& tone,
-                   const std::function<void(const std::string&)>& say, StagedFiles& files);
+/// Returns the camera the images were rendered through (none without images).
+std::optional<Camera> write_outputs(const OutputMesh& mesh, const OutputOptions& o,
+                                    const ToneMap& tone,
+                                    const std::function<void(const std::string&)>& say,
+                                    StagedFiles& files);
 
 }  // namespace rad

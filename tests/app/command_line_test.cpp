@@ -15,6 +15,7 @@
 
 #include "app/cli.h"
 #include "core/error.h"
+#include "export/camera.h"
 
 namespace {
 
@@ -517,7 +518,14 @@ TEST(CommandLine, VersionIsTheProjectsAndGoesIntoTheStats) {
                            (kScenes / "parallel_squares.des").string() + " --image " +
                            (fs::temp_directory_path() / "rad_test_version.png").string());
   EXPECT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(read_file(stats).find("\"rad_version\": \"" RAD_VERSION "\""), std::string::npos);
+  const std::string json = read_file(stats);
+  EXPECT_NE(json.find("\"rad_version\": \"" RAD_VERSION "\""), std::string::npos);
+  // The camera the image was rendered through, as --camera takes it.
+  const size_t at = json.find("\"camera\": \"");
+  ASSERT_NE(at, std::string::npos) << json;
+  const size_t from = at + 11, to = json.find('"', from);
+  EXPECT_NO_THROW(rad::parse_camera(json.substr(from, to - from))) << json.substr(from, to - from);
+  EXPECT_NE(json.find("\"objects\": ["), std::string::npos);
   fs::remove(stats);
   fs::remove(fs::temp_directory_path() / "rad_test_version.png");
 }
