@@ -66,6 +66,19 @@ struct Regrouper {
     return int32_t(out.objects.size()) - 1;
   }
 
+  // h's lights as objects at the top (already in world space: no transforms).
+  void add_lights() {
+    for (const Light& l : h.lights) {
+      ObjectDescription o;
+      o.name = l.name;
+      o.loc = l.loc;
+      o.light = l;
+      out.objects.push_back(std::move(o));
+      source.resize(out.objects.size(), -1);
+      out.roots.push_back(int32_t(out.objects.size()) - 1);
+    }
+  }
+
   int32_t group(ObjectKind kind, std::vector<int32_t> children) {
     ObjectDescription g;
     g.name =
@@ -187,14 +200,15 @@ Regrouper regrouped_pures(const Hierarchy& h, HierarchyMode mode, bool with_tria
   Regrouper r(h, mode == HierarchyMode::Automatic ? "auto" : "flat");
   r.with_triangles = with_triangles;
   const std::vector<int32_t> pures = pures_of(h);
-  if (pures.empty()) return r;
-  if (mode == HierarchyMode::Automatic) {
+  if (pures.empty()) {
+  } else if (mode == HierarchyMode::Automatic) {
     r.out.roots.push_back(r.build(pures));
   } else {
     std::vector<int32_t> parts;
     for (const int32_t i : pures) parts.push_back(r.pure(i));
     r.out.roots.push_back(r.group(ObjectKind::Composite, std::move(parts)));
   }
+  r.add_lights();
   return r;
 }
 
@@ -245,6 +259,7 @@ Hierarchy regrouped_hierarchy(const Hierarchy& h, HierarchyMode mode) {
   out.source_path = h.source_path;
   out.dropped_degenerate = h.dropped_degenerate;
   out.model = h.model;
+  out.lights = h.lights;
   out.objects.reserve(r.out.objects.size());
   out.triangles.corners.reserve(h.triangles.size());
   out.triangles.normal.reserve(h.triangles.size());
@@ -252,6 +267,7 @@ Hierarchy regrouped_hierarchy(const Hierarchy& h, HierarchyMode mode) {
   out.triangles.object.reserve(h.triangles.size());
   Placer placer{h, r.out, r.source, out};
   for (const int32_t root : r.out.roots) {
+    if (r.out.objects[size_t(root)].light) continue;  // in out.lights already
     out.roots.push_back(placer.add(root, -1));
     out.bounds.extend(out.objects[size_t(out.roots.back())].box);
   }

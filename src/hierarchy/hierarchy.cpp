@@ -37,10 +37,14 @@ struct Builder {
         flags.has_lights = content->flags.has_lights, flags.lights = content->flags.lights;
     }
     // Copies can nest and multiply: bound the walk and what it makes, not the stack or memory.
-    if (depth > limits.max_depth || out.objects.size() >= limits.max_objects) {
+    if (depth > limits.max_depth || out.objects.size() + out.lights.size() >= limits.max_objects) {
       throw Error(d.loc, fmt::format("copies of copies make more than {} objects or nest deeper "
                                      "than {}",
                                      limits.max_objects, limits.max_depth));
+    }
+    if (content->light) {  // a light: placed into Hierarchy::lights, no SceneObject
+      out.lights.push_back(placed(*content->light, placement, d));
+      return -1;
     }
     int32_t id = static_cast<int32_t>(out.objects.size());
     out.objects.push_back({});
@@ -101,10 +105,20 @@ struct Builder {
         for (const Vec3& p : t) box.extend(p);
       }
     } else {
+      const size_t lights_before = out.lights.size();
       for (int32_t c : content->children) {
         int32_t child = add(c, id, placement, depth + 1);
+        if (child < 0) continue;  // a light
         out.objects[size_t(id)].children.push_back(child);
         box.extend(out.objects[size_t(child)].box);
+      }
+      // A group of lights alone (an Assembly "lamps" of Light objects) leaves its lights and
+      // no object: every object below it was a light, so it is the last object made.
+      if (out.triangles.size() == out.objects[size_t(id)].first_triangle &&
+          out.lights.size() > lights_before) {
+        out.objects.pop_back();
+        flags_of.pop_back();
+        return -1;
       }
     }
     SceneObject& o = out.objects[size_t(id)];
@@ -116,6 +130,33 @@ struct Builder {
                                      to_string(o.kind), d.name));
     }
     return id;
+  }
+
+  // Light `l` of description object `d` placed by `m` into the world: its position as a point,
+  // its direction and C0 direction as directions (unit again); cones, intensity and colour stay
+  // as they are (a scale moves a light, it does not brighten or widen it).
+  static Light placed(const Light& l, const glm::dmat4& m, const ObjectDescription& d) {
+    Light w = l;
+    w.name = d.name;
+    w.loc = d.loc;
+    if (m != glm::dmat4(1.0)) {
+      w.position = Vec3(DVec3(m * glm::dvec4(DVec3(l.position), 1.0)));
+      const glm::dmat3 linear(m);
+      const DVec3 dir = linear * DVec3(l.direction);
+      if (glm::length(dir) > 0.0) w.direction = Vec3(glm::normalize(dir));
+      DVec3 up = linear * DVec3(l.photometric_up);
+      up -= DVec3(w.direction) * glm::dot(up, DVec3(w.direction));
+      w.photometric_up =
+          glm::length(up) > 1e-6 ? Vec3(glm::normalize(up)) : default_photometric_up(w.direction);
+    }
+    if (w.kind != LightKind::Directional &&
+        !(max_component(glm::abs(w.position)) <= kMaxCoordinate)) {
+      throw Error(d.loc, fmt::format("light \"{}\" is placed at {:g} {:g} {:g}, too far: rad takes "
+                                     "|x|, |y|, |z| up to {:g} (scale the scene down)",
+                                     d.name, w.position.x, w.position.y, w.position.z,
+                                     double(kMaxCoordinate)));
+    }
+    return w;
   }
 
   // Every object with a Lights list: its own triangles and those of every object of each name
@@ -183,8 +224,14 @@ Hierarchy build_hierarchy(const SceneDescription& scene, const BuildLimits& limi
   h.objects.reserve(scene.objects.size());
   for (int32_t r : scene.roots) {
     int32_t id = b.add(r, -1, glm::dmat4(1.0), 0);
+    if (id < 0) continue;  // a light
     h.roots.push_back(id);
     h.bounds.extend(h.objects[id].box);
+  }
+  if (h.roots.empty() && !h.lights.empty()) {
+    throw Error(SourceLoc{scene.path},
+                "the scene has lights but no surfaces for them to light: "
+                "give it objects with triangles");
   }
   h.dropped_degenerate = b.dropped;
   b.resolve_lights();
@@ -238,6 +285,13 @@ std::string summarize(const Hierarchy& h) {
   s += "\n";
   s += fmt::format("Emitters: {} Pures, {} triangles, power {:.6g} (mean over channels)\n",
                    emitters, emitting_triangles, emitted_power);
+  if (!h.lights.empty()) {
+    size_t kinds[3] = {0, 0, 0}, ies = 0;
+    for (const Light& l : h.lights)
+      ++kinds[static_cast<int>(l.kind)], ies += l.photometry != nullptr;
+    s += fmt::format("Lights: {} ({} point, {} spot, {} directional; {} with IES photometry)\n",
+                     h.lights.size(), kinds[0], kinds[1], kinds[2], ies);
+  }
   size_t no_cast = 0, no_receive = 0, lists = 0;
   for (const SceneObject& o : h.objects) {
     if (o.kind == ObjectKind::Pure) no_cast += !o.casts_shadows, no_receive += !o.receives_shadows;

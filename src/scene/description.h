@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/math.h"
+#include "scene/light.h"
 
 namespace rad {
 
@@ -67,6 +68,11 @@ struct ObjectDescription {
   Material material;                           // Pure only
   std::vector<std::array<Vec3, 3>> triangles;  // Pure only: corners a, b, c (front: (b-a)x(c-a))
   std::vector<SourceLoc> triangle_locs;        // Pure only: where each was written (or empty)
+  /// Set for a Light object alone (`Object "lamp" Light { ... }`, or a model's light): the light
+  /// in the object's own coordinates, placed by the transforms around it as a Pure's triangles
+  /// are. Such an object has no children, triangles or material (its `kind` is Pure, unused);
+  /// build_hierarchy makes it a Hierarchy::lights entry, not a SceneObject.
+  std::optional<Light> light;
 };
 
 /// Base-colour textures of a model's materials: those read (the material reflects their mean

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
+#include <numbers>
 #include <string>
 
 namespace rad {
@@ -22,6 +24,33 @@ std::string quoted(const std::string& name) {
   return q + '"';
 }
 
+// A Light object's body, as the parser reads it.
+void write_light(const Light& l, const std::string& pad, std::ostream& out) {
+  auto vec = [](const Vec3& v) { return fmt::format("<{:.9g} {:.9g} {:.9g}>", v.x, v.y, v.z); };
+  constexpr double kDeg = 180.0 / std::numbers::pi;
+  const char* type = l.kind == LightKind::Point  ? "Point"
+                     : l.kind == LightKind::Spot ? "Spot"
+                                                 : "Directional";
+  out << pad << "Type " << type;
+  if (l.kind != LightKind::Directional) out << " Position " << vec(l.position);
+  if (l.kind != LightKind::Point || l.photometry) out << " Direction " << vec(l.direction);
+  out << " Color " << vec(l.colour) << " Intensity " << fmt::format("{:.9g}", l.intensity);
+  if (l.kind == LightKind::Spot) {
+    out << fmt::format(" Cone {:.9g} {:.9g}", l.inner_cone * kDeg, l.outer_cone * kDeg);
+  }
+  if (l.kind == LightKind::Directional) {
+    out << fmt::format(" AngularDiameter {:.9g}", l.angular_diameter * kDeg);
+  }
+  if (l.photometry) {
+    std::error_code ec;
+    const std::filesystem::path ies = std::filesystem::absolute(l.photometry->path, ec);
+    out << " Ies " << quoted(ec ? l.photometry->path : ies.string()) << " IesC0 "
+        << vec(l.photometric_up);
+  }
+  if (!l.group.empty()) out << " Group " << quoted(l.group);
+  out << "\n";
+}
+
 }  // namespace
 
 bool material_is_writable(const Material& m) {
@@ -39,6 +68,8 @@ void write_description(const SceneDescription& scene, std::ostream& out) {
     out << pad << "Object " << quoted(o.name) << ' ';
     if (o.copy_of >= 0) {  // the latest complete object of that name, as when it was parsed
       out << "Copy " << quoted(scene.objects[size_t(o.copy_of)].name);
+    } else if (o.light) {
+      out << "Light";
     } else {
       out << to_string(o.kind);
     }
@@ -71,7 +102,9 @@ void write_description(const SceneDescription& scene, std::ostream& out) {
       return;
     }
     out << " {\n";
-    if (o.kind == ObjectKind::Pure) {
+    if (o.light) {
+      write_light(*o.light, pad + "  ", out);
+    } else if (o.kind == ObjectKind::Pure) {
       const Material& m = o.material;
       const float rho = max_component(m.reflectance), e = max_component(m.emission);
       const Vec3 color = written_color(m);

@@ -10,7 +10,8 @@ namespace rad {
 
 /// Writes the scene as a description file with every Pure's triangles in a Data block,
 /// copies, transforms and flags as written. Reflectance and emission are written as
-/// Reflectivity × Color and Emission × Color.
+/// Reflectivity × Color and Emission × Color; Light objects with their properties (an IES file
+/// by its absolute path).
 void write_description(const SceneDescription& scene, std::ostream& out);
 
 /// Whether `m` survives the description format as it is: one Color serves reflectance and

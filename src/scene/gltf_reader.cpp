@@ -264,6 +264,63 @@ std::string unsupported_in_json(std::string_view bytes, bool binary) {
   return unsupported(version, required);
 }
 
+// A KHR_lights_punctual light placed by its node's world matrix: at the node's origin, shining
+// along its -Z axis (the C0 direction of a photometry, unused by glTF, along its +X).
+Light light_of(const tinygltf::Light& gl, int index, const std::string& node_name,
+               const glm::dmat4& world, const std::string& path, bool& range_warned) {
+  Light l;
+  l.name = !gl.name.empty()     ? gl.name
+           : !node_name.empty() ? node_name
+                                : "light " + std::to_string(index);
+  l.loc = SourceLoc{path};
+  const std::string who =
+      "KHR_lights_punctual light " + std::to_string(index) + " ('" + l.name + "')";
+  if (gl.type == "point") {
+    l.kind = LightKind::Point;
+  } else if (gl.type == "spot") {
+    l.kind = LightKind::Spot;
+  } else if (gl.type == "directional") {
+    l.kind = LightKind::Directional;
+  } else {
+    fail(path, who + " has type '" + gl.type.substr(0, 40) +
+                   "': the extension's lights are point, spot or directional");
+  }
+  if (!gl.color.empty()) {
+    if (gl.color.size() != 3) fail(path, who + ": its color must have 3 components");
+    l.colour = Vec3(float(gl.color[0]), float(gl.color[1]), float(gl.color[2]));
+  }
+  l.intensity = float(gl.intensity);
+  if (l.kind == LightKind::Spot) {
+    l.inner_cone = float(gl.spot.innerConeAngle);
+    l.outer_cone = float(gl.spot.outerConeAngle);
+  }
+  if (gl.range > 0.0 && !range_warned) {
+    range_warned = true;
+    rad::warn(SourceLoc{path}, who +
+                                   " has a range, which rad ignores: light falls off with the "
+                                   "square of the distance and reaches as far as it goes");
+  }
+  l.position = Vec3(DVec3(world * glm::dvec4(0.0, 0.0, 0.0, 1.0)));
+  const glm::dmat3 linear(world);
+  const DVec3 d = linear * DVec3(0.0, 0.0, -1.0);
+  if (glm::length(d) > 0.0 && std::isfinite(glm::length(d))) {
+    l.direction = Vec3(glm::normalize(d));
+  } else if (l.kind == LightKind::Point) {
+    l.direction = Vec3(0.0f, -1.0f, 0.0f);
+  }
+  DVec3 up = linear * DVec3(1.0, 0.0, 0.0);
+  up -= DVec3(l.direction) * glm::dot(up, DVec3(l.direction));
+  l.photometric_up = glm::length(up) > 1e-9 && std::isfinite(glm::length(up))
+                         ? Vec3(glm::normalize(up))
+                         : default_photometric_up(l.direction);
+  try {
+    check_light(l);
+  } catch (const Error& e) {
+    fail(path, who + " (node '" + node_name + "'): " + e.message());
+  }
+  return l;
+}
+
 }  // namespace
 
 Model parse_gltf(std::string_view bytes, const std::string& path, const std::string& folder) {
@@ -292,6 +349,7 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
   // Any other required extension changes how materials look, not where surfaces are: the file
   // is read without it, once said.
   for (const std::string& e : g.extensionsRequired) {
+    if (e == "KHR_lights_punctual") continue;  // read
     rad::warn(SourceLoc{path}, "the extension " + e +
                                    " is required but rad ignores it: materials take their base "
                                    "colour and emission alone");
@@ -329,6 +387,7 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
   }
   size_t meshes_placed = 0;
   size_t visits = 0;
+  bool range_warned = false;
   while (!stack.empty()) {
     const Item it = stack.back();
     stack.pop_back();
@@ -338,6 +397,18 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
     const tinygltf::Node& n = g.nodes[size_t(it.node)];
     const glm::dmat4 world = it.parent * local_transform(n);
     for (int child : n.children) stack.push_back({child, it.depth + 1, world});
+    const auto lights = n.extensions.find("KHR_lights_punctual");
+    if (lights != n.extensions.end() && lights->second.IsObject() && lights->second.Has("light")) {
+      const tinygltf::Value& k = lights->second.Get("light");
+      const double index = k.IsNumber() ? k.GetNumberAsDouble() : -1.0;
+      if (!(index >= 0.0 && index < double(g.lights.size()) && index == std::floor(index))) {
+        fail(path, "node " + std::to_string(it.node) +
+                       " names no such KHR_lights_punctual light (the file has " +
+                       std::to_string(g.lights.size()) + ")");
+      }
+      m.lights.push_back(
+          light_of(g.lights[size_t(index)], int(index), n.name, world, path, range_warned));
+    }
     if (n.mesh < 0) continue;
     if (size_t(n.mesh) >= g.meshes.size()) fail(path, "a node names no such mesh");
     const tinygltf::Mesh& mesh = g.meshes[size_t(n.mesh)];

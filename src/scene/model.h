@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/math.h"
 #include "scene/description.h"
+#include "scene/light.h"
 
 namespace rad {
 
@@ -34,6 +35,8 @@ struct Model {
   std::string path;
   std::vector<ModelMaterial> materials;
   std::vector<ModelGroup> groups;
+  /// The lights that are not surfaces (glTF KHR_lights_punctual), placed in the model's space.
+  std::vector<Light> lights;
   TextureCounts textures;
   size_t triangle_count() const {
     size_t n = 0;

@@ -114,6 +114,16 @@ SceneDescription model_to_scene(Model m, const ModelOptions& o) {
       if (!g.triangle_locs.empty()) p.triangle_locs.push_back(g.triangle_locs[t]);
     }
   }
+  // The model's lights (glTF KHR_lights_punctual), each a Light object of the model's Assembly.
+  for (Light& l : m.lights) {
+    emits |= l.intensity > 0.0f && max_component(l.colour) > 0.0f;
+    ObjectDescription lo;
+    lo.name = l.name;
+    lo.loc = l.loc;
+    lo.light = std::move(l);
+    d.objects[0].children.push_back(int32_t(d.objects.size()));
+    d.objects.push_back(std::move(lo));
+  }
   if (!emits && (o.require_emission || o.warn_unlit)) {
     // The example names the model's own first material: the user copies it and edits the value.
     std::string lamp = "*";

@@ -31,8 +31,9 @@ struct ModelOptions {
 
 /// The scene of a model: an Assembly named after the file, one Composite per group, one Pure per
 /// (group, material) with the material's reflectance (clamped to 1 per channel, with one warning
-/// per material) and emission (the rules override the file's), with the model's summary
-/// (SceneDescription::model). Throws rad::Error naming the --emit option when nothing emits
+/// per material) and emission (the rules override the file's), a Light object per light of the
+/// model (ObjectDescription::light; a light with intensity counts as emitting), with the model's
+/// summary (SceneDescription::model). Throws rad::Error naming the --emit option when nothing emits
 /// (unless !require_emission; then a warning if warn_unlit), or when a rule matches no material.
 SceneDescription model_to_scene(Model m, const ModelOptions& o);
 

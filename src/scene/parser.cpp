@@ -8,7 +8,10 @@
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
+#include <map>
+#include <numbers>
 
+#include "scene/ies_reader.h"
 #include "scene/model.h"
 #include "scene/model_scene.h"
 #include "scene/off_reader.h"
@@ -19,11 +22,39 @@ namespace rad {
 
 namespace {
 
-constexpr std::array<std::string_view, 19> kKeywords = {
-    "Object",       "Assembly",        "Composite", "Pure", "Reflectivity",
-    "Color",        "Emission",        "File",      "Data", "Copy",
-    "CastsShadows", "ReceivesShadows", "Lights",    "Yes",  "No",
-    "Translate",    "Rotate",          "Scale",     "Model"};
+constexpr std::array<std::string_view, 32> kKeywords = {"Object",
+                                                        "Assembly",
+                                                        "Composite",
+                                                        "Pure",
+                                                        "Reflectivity",
+                                                        "Color",
+                                                        "Emission",
+                                                        "File",
+                                                        "Data",
+                                                        "Copy",
+                                                        "CastsShadows",
+                                                        "ReceivesShadows",
+                                                        "Lights",
+                                                        "Yes",
+                                                        "No",
+                                                        "Translate",
+                                                        "Rotate",
+                                                        "Scale",
+                                                        "Model",
+                                                        "Light",
+                                                        "Type",
+                                                        "Point",
+                                                        "Spot",
+                                                        "Directional",
+                                                        "Position",
+                                                        "Direction",
+                                                        "Intensity",
+                                                        "Cone",
+                                                        "AngularDiameter",
+                                                        "Ies",
+                                                        "IesC0",
+                                                        "Group"};
+constexpr float kDegree = std::numbers::pi_v<float> / 180.0f;
 constexpr std::array<const char*, 3> kChannels = {"red", "green", "blue"};
 
 bool is_keyword(std::string_view word) {
@@ -151,6 +182,7 @@ class Parser {
     Token kind = tokens_.next();
     ObjectKind k;
     int32_t copy_of = -1;
+    bool light = false;
     Token model_file;
     if (is_word(kind, "Copy")) {
       // Copy "name": the latest complete object of that name (so never one that is open).
@@ -169,6 +201,8 @@ class Parser {
                     "no object \"" + original.text + "\" is defined before this copy");
       }
       k = scene_.objects[size_t(copy_of)].kind;
+      for (int32_t o = copy_of; o >= 0; o = scene_.objects[size_t(o)].copy_of)
+        light |= scene_.objects[size_t(o)].light.has_value();
     } else if (is_word(kind, "Model")) {
       // Model "file": the whole model, its groups and materials, as an Assembly (design §8).
       model_file = tokens_.next();
@@ -183,11 +217,14 @@ class Parser {
       k = ObjectKind::Composite;
     } else if (is_word(kind, "Pure")) {
       k = ObjectKind::Pure;
+    } else if (is_word(kind, "Light")) {
+      k = ObjectKind::Pure;  // a leaf, as ObjectDescription::light says
+      light = true;
     } else {
-      fail_expected(
-          kind,
-          in_composite ? "'Pure' or 'Copy'" : "'Assembly', 'Composite', 'Pure', 'Copy' or 'Model'",
-          true);
+      fail_expected(kind,
+                    in_composite ? "'Pure', 'Light' or 'Copy'"
+                                 : "'Assembly', 'Composite', 'Pure', 'Light', 'Copy' or 'Model'",
+                    true);
     }
     if (in_composite && k != ObjectKind::Pure) {
       throw Error(kind.loc, "a Composite holds only Pures, but \"" + name + "\" is " +
@@ -201,10 +238,20 @@ class Parser {
     d.copy_of = copy_of;
     const bool model = !model_file.text.empty();
     d.flags = parse_flags(d.transforms, /*body=*/copy_of < 0 && !model);
+    if (light && (d.flags.casts_shadows || d.flags.receives_shadows || d.flags.has_lights)) {
+      throw Error(kind.loc,
+                  "a Light takes Translate, Rotate and Scale, not CastsShadows, "
+                  "ReceivesShadows or Lights (it is not a surface)");
+    }
     scene_.objects.push_back(std::move(d));
     complete_.push_back(0);
     if (model) graft_model(id, model_file);
     if (copy_of >= 0 || model) {
+      complete_[size_t(id)] = 1;
+      return id;
+    }
+    if (light) {
+      parse_light(id);
       complete_[size_t(id)] = 1;
       return id;
     }
@@ -329,6 +376,178 @@ class Parser {
     return t;
   }
 
+  // Light ::= "Light" Flags "{" "Type" LightType LightProperties "}"
+  // LightType ::= "Point" | "Spot" | "Directional"
+  // LightProperty ::= "Position" Vector | "Direction" Vector | "Color" Vector | "Intensity" Real
+  //                 | "Cone" Real Real | "AngularDiameter" Real | "Ies" FileName
+  //                 | "IesC0" Vector | "Group" String        (any order, each at most once)
+  void parse_light(int32_t id) {
+    expect_symbol('{');
+    expect_keyword("Type");
+    const Token type = tokens_.next();
+    Light l;
+    l.name = scene_.objects[size_t(id)].name;
+    l.loc = scene_.objects[size_t(id)].loc;
+    if (is_word(type, "Point")) {
+      l.kind = LightKind::Point;
+    } else if (is_word(type, "Spot")) {
+      l.kind = LightKind::Spot;
+    } else if (is_word(type, "Directional")) {
+      l.kind = LightKind::Directional;
+    } else {
+      fail_expected(type, "'Point', 'Spot' or 'Directional' after 'Type'", true);
+    }
+    const char* kind = to_string(l.kind);
+    const bool directional = l.kind == LightKind::Directional;
+    std::vector<std::string> seen;
+    std::optional<Token> position, direction, intensity, ies, c0;
+    Vec3 up(0.0f);
+    for (;;) {
+      const Token t = tokens_.next();
+      if (is_symbol(t, '}')) {
+        // What the light needs, said at its end.
+        auto need = [&](bool missing, const std::string& what) {
+          if (missing)
+            throw Error(t.loc, fmt::format("{} light \"{}\" has no {}", kind, l.name, what));
+        };
+        need(!directional && !position, "Position (where it is: Position <x y z>)");
+        need(l.kind != LightKind::Point && !direction,
+             "Direction (where it shines: Direction <x y z>, e.g. <0 -1 0>)");
+        need(!intensity && !ies,
+             directional ? "Intensity (its illuminance in lux: Intensity 100000 for full sun)"
+                         : "Intensity (candela: Intensity 100), nor an Ies file");
+        break;
+      }
+      const bool property =
+          t.kind == TokenKind::Word &&
+          (t.text == "Position" || t.text == "Direction" || t.text == "Color" ||
+           t.text == "Intensity" || t.text == "Cone" || t.text == "AngularDiameter" ||
+           t.text == "Ies" || t.text == "IesC0" || t.text == "Group");
+      if (!property) {
+        fail_expected(t,
+                      directional ? "'Direction', 'Color', 'Intensity', 'AngularDiameter', "
+                                    "'Group' or '}'"
+                      : l.kind == LightKind::Spot
+                          ? "'Position', 'Direction', 'Color', 'Intensity', 'Cone', 'Ies', "
+                            "'IesC0', 'Group' or '}'"
+                          : "'Position', 'Color', 'Intensity', 'Ies', 'Direction', 'IesC0', "
+                            "'Group' or '}'",
+                      true);
+      }
+      if (std::find(seen.begin(), seen.end(), t.text) != seen.end()) {
+        throw Error(t.loc, "'" + t.text + "' given twice for one light");
+      }
+      seen.push_back(t.text);
+      auto only = [&](bool allowed, const std::string& why) {
+        if (!allowed) throw Error(t.loc, fmt::format("a {} light has no {}", kind, why));
+      };
+      std::array<Token, 3> w;
+      if (t.text == "Position") {
+        only(!directional, "Position: the sun shines from far away along its Direction");
+        position = t;
+        l.position = Vec3(expect_vector("the light's position", w));
+      } else if (t.text == "Direction") {
+        direction = t;
+        const DVec3 d = expect_vector("the light's direction", w);
+        if (!(glm::length(d) > 0.0) || !std::isfinite(glm::length(d))) {
+          throw Error(w[0].loc,
+                      "the light's direction is zero: give where it shines, e.g. "
+                      "<0 -1 0> (straight down when y is up)");
+        }
+        l.direction = Vec3(glm::normalize(d));
+      } else if (t.text == "Color") {
+        const DVec3 c = expect_vector("the light's colour", w);
+        for (int k = 0; k < 3; ++k) {
+          if (c[k] < 0.0) {
+            throw Error(w[size_t(k)].loc, std::string("negative ") + kChannels[size_t(k)] +
+                                              " colour component " + w[size_t(k)].text);
+          }
+        }
+        l.colour = Vec3(c);
+      } else if (t.text == "Intensity") {
+        Token v;
+        intensity = t;
+        const double i = expect_number(
+            directional ? "the intensity in lux (a number)" : "the intensity in candela (a number)",
+            v);
+        if (i < 0.0) throw Error(v.loc, "negative intensity " + v.text);
+        l.intensity = float(i);
+        if (!std::isfinite(l.intensity))
+          throw Error(v.loc, "intensity " + v.text + " is too large");
+      } else if (t.text == "Cone") {
+        only(l.kind == LightKind::Spot, "Cone: only a spot light has one");
+        Token a, b;
+        const double inner = expect_number("the inner cone's half-angle in degrees", a);
+        const double outer = expect_number("the outer cone's half-angle in degrees", b);
+        if (inner < 0.0) throw Error(a.loc, "negative inner cone angle " + a.text);
+        if (!(outer > 0.0) || outer > 90.0) {
+          throw Error(b.loc, "outer cone angle " + b.text +
+                                 " is not above 0 and at most 90 degrees (a half-angle from the "
+                                 "axis; for light every way use a point light)");
+        }
+        if (inner > outer) {
+          throw Error(a.loc, "the inner cone (" + a.text + " degrees) is wider than the outer (" +
+                                 b.text +
+                                 "): Cone INNER OUTER, full intensity within the inner, "
+                                 "none beyond the outer");
+        }
+        l.inner_cone = float(inner) * kDegree;
+        l.outer_cone = float(outer) * kDegree;
+      } else if (t.text == "AngularDiameter") {
+        only(directional, "AngularDiameter: only a directional light (the sun) has one");
+        Token v;
+        const double a = expect_number("the angular diameter in degrees", v);
+        if (!(a >= 0.0 && a < 90.0)) {
+          throw Error(v.loc, "angular diameter " + v.text +
+                                 " is outside 0 (sharp shadows) to under 90 degrees (the sun's "
+                                 "is 0.53)");
+        }
+        l.angular_diameter = float(a) * kDegree;
+      } else if (t.text == "Ies") {
+        only(!directional, "Ies file: give a point or spot light the luminaire's file");
+        const Token file = tokens_.next();
+        if ((file.kind != TokenKind::Word && file.kind != TokenKind::String) || file.text.empty()) {
+          fail_expected(file, "an IES file's name", false);
+        }
+        ies = file;
+        namespace fs = std::filesystem;
+        const std::string full =
+            (fs::path(scene_.path).parent_path() / file.text).lexically_normal().string();
+        auto it = photometry_.find(full);
+        if (it == photometry_.end())
+          it = photometry_.emplace(full, read_ies_file(full, file.loc)).first;
+        l.photometry = it->second;
+      } else if (t.text == "IesC0") {
+        c0 = t;
+        up = Vec3(expect_vector("the direction of the IES file's C0 plane", w));
+        if (!(glm::length(up) > 0.0f)) throw Error(w[0].loc, "the IesC0 direction is zero");
+      } else {  // Group
+        l.group = expect_string("the light group's name (a quoted string)");
+      }
+    }
+    if (c0 && !ies) throw Error(c0->loc, "'IesC0' orients an IES file: give the light an 'Ies'");
+    if (l.kind == LightKind::Point && direction && !ies) {
+      throw Error(direction->loc,
+                  "a point light shines every way: its 'Direction' only aims an "
+                  "'Ies' file's nadir; remove it or use a Spot");
+    }
+    if (!intensity) l.intensity = 1.0f;  // with an IES file: its candela as they are
+    if (l.kind == LightKind::Point && !direction) l.direction = Vec3(0.0f, -1.0f, 0.0f);
+    if (c0) {
+      const Vec3 p = up - l.direction * glm::dot(up, l.direction);
+      if (!(glm::length(p) > 1e-3f * glm::length(up))) {
+        throw Error(c0->loc,
+                    "the IesC0 direction lies along the light's direction: give one "
+                    "across it (the luminaire's C0 reference direction)");
+      }
+      l.photometric_up = glm::normalize(p);
+    } else {
+      l.photometric_up = default_photometric_up(l.direction);
+    }
+    check_light(l);
+    scene_.objects[size_t(id)].light = std::move(l);
+  }
+
   // Assembly ::= "Assembly" "{" Composition "}";  Composite ::= "Composite" "{" Objects "}"
   void parse_group(int32_t id, bool pures_only) {
     expect_symbol('{');
@@ -449,6 +668,7 @@ class Parser {
   }
 
   Tokenizer tokens_;
+  std::map<std::string, std::shared_ptr<const Photometry>> photometry_;  // IES files read, by path
   std::vector<char> complete_;             // per object: parsed to its end (a copy may name it)
   int depth_ = 0;                          // objects open around the one being parsed
   static constexpr int kMaxNesting = 256;  // real scenes nest a few deep; ASan frames are large

@@ -7,6 +7,8 @@
 #include <sstream>
 #include <string>
 
+#include "hierarchy/auto_hierarchy.h"
+#include "scene/description_writer.h"
 #include "scene/parser.h"
 #include "scenegen/scenegen.h"
 
@@ -268,6 +270,102 @@ TEST(Hierarchy, CopiesTransformsAndFlagsSurviveWritingTheDescriptionBack) {
                 1e-5f)
           << t;
     }
+  }
+}
+
+// A lamp fixture (a shade and a spot light) placed, copied rotated and scaled; a group of lights
+// alone; a copy of a light.
+const char* kLit = R"("lit"
+Object "floor" Pure { Reflectivity 0.5 Color <1 1 1> Emission 0
+  Data { <-9 0 -9> <-9 0 9> <9 0 9> } }
+Object "fixture" Assembly Translate <1 0 0> {
+  Object "shade" Pure { Reflectivity 0.5 Color <1 1 1> Emission 0
+    Data { <0 2 0> <0 2 1> <1 2 0> } }
+  Object "spot" Light { Type Spot Position <0 2 0> Direction <0 -1 0> Intensity 500 Cone 20 30 }
+}
+Object "fixture 2" Copy "fixture" Rotate <0 0 1> 90 Scale 2
+Object "lamps" Assembly {
+  Object "a" Light { Type Point Position <0 3 0> Intensity 10 Group "room" }
+  Object "sun" Light Rotate <0 0 1> 90 {
+    Type Directional Direction <0 -1 0> Intensity 1000 AngularDiameter 1 }
+}
+Object "b" Copy "a" Translate <0 0 4>
+)";
+
+TEST(HierarchyLights, LightsArePlacedLikeObjectsAndCopiesAreFlattened) {
+  const Hierarchy h = build(kLit);
+  // Objects: floor, fixture, shade, fixture 2, shade; no object for a light or the lights' group.
+  ASSERT_EQ(h.objects.size(), 5u);
+  EXPECT_EQ(h.roots, (std::vector<int32_t>{0, 1, 3}));
+  EXPECT_EQ(h.objects[1].children, (std::vector<int32_t>{2}));
+  ASSERT_EQ(h.lights.size(), 5u);
+  auto near = [](Vec3 a, Vec3 b) { return glm::length(a - b) < 1e-5f; };
+  const Light& spot = h.lights[0];
+  EXPECT_EQ(spot.name, "spot");
+  EXPECT_TRUE(near(spot.position, Vec3(1, 2, 0)));
+  EXPECT_TRUE(near(spot.direction, Vec3(0, -1, 0)));
+  // The copy: translated, then turned 90 degrees about z, then scaled 2. A scale moves a light;
+  // it neither brightens it nor widens its cone.
+  const Light& spot2 = h.lights[1];
+  EXPECT_EQ(spot2.name, "spot");  // inside a copy, as its objects are: named as in the original
+  EXPECT_EQ(spot2.loc.line, 7);
+  EXPECT_TRUE(near(spot2.position, Vec3(-4, 2, 0))) << spot2.position.x << " " << spot2.position.y;
+  EXPECT_TRUE(near(spot2.direction, Vec3(1, 0, 0)));
+  EXPECT_EQ(spot2.intensity, 500.0f);
+  EXPECT_EQ(spot2.outer_cone, spot.outer_cone);
+  EXPECT_NEAR(glm::dot(spot2.photometric_up, spot2.direction), 0.0f, 1e-6f);
+  EXPECT_EQ(h.lights[2].name, "a");
+  EXPECT_EQ(h.lights[2].group, "room");
+  EXPECT_TRUE(near(h.lights[3].direction, Vec3(1, 0, 0)));  // the sun, turned
+  EXPECT_EQ(h.lights[4].name, "b");
+  EXPECT_TRUE(near(h.lights[4].position, Vec3(0, 3, 4)));
+  EXPECT_EQ(h.lights[4].group, "room");
+  EXPECT_NE(summarize(h).find("Lights: 5 (2 point, 2 spot, 1 directional; 0 with IES"),
+            std::string::npos)
+      << summarize(h);
+}
+
+TEST(HierarchyLights, RegroupingAndWritingTheDescriptionBackKeepTheLights) {
+  const SceneDescription d = parse_scene_text(kLit, "scene.des");
+  const Hierarchy h = build_hierarchy(d);
+  std::ostringstream text;
+  write_description(d, text);
+  const Hierarchy again = build_hierarchy(parse_scene_text(text.str(), "again.des"));
+  for (const HierarchyMode mode : {HierarchyMode::Automatic, HierarchyMode::Flat}) {
+    const Hierarchy r = regrouped_hierarchy(h, mode);
+    ASSERT_EQ(r.lights.size(), h.lights.size());
+    EXPECT_EQ(build_hierarchy(regroup(d, mode)).lights.size(), h.lights.size());
+  }
+  ASSERT_EQ(again.lights.size(), h.lights.size()) << text.str();
+  for (size_t i = 0; i < h.lights.size(); ++i) {
+    const Light &a = h.lights[i], &b = again.lights[i];
+    EXPECT_EQ(a.kind, b.kind) << i;
+    EXPECT_LT(glm::length(a.position - b.position), 1e-5f) << i;
+    EXPECT_LT(glm::length(a.direction - b.direction), 1e-5f) << i;
+    EXPECT_NEAR(a.outer_cone, b.outer_cone, 1e-6f) << i;
+    EXPECT_NEAR(a.angular_diameter, b.angular_diameter, 1e-6f) << i;
+    EXPECT_EQ(a.intensity, b.intensity) << i;
+    EXPECT_EQ(a.group, b.group) << i;
+  }
+}
+
+TEST(HierarchyLights, ASceneOfLightsAloneOrALightTooFarIsRefused) {
+  try {
+    build("\"s\"\nObject \"a\" Light { Type Point Position <0 1 0> Intensity 1 }\n");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no surfaces"), std::string::npos) << e.what();
+  }
+  // A light beyond the coordinates rad computes with, once placed.
+  try {
+    build(std::string("\"s\"\n") +
+          "Object \"f\" Pure { Reflectivity 0.5 Color <1 1 1> Emission 0 Data { <0 0 0> <1 0 0> "
+          "<0 1 0> } }\n"
+          "Object \"a\" Light Translate <2e8 0 0> { Type Point Position <0 1 0> Intensity 1 }\n");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.loc().line, 3);
+    EXPECT_NE(std::string(e.what()).find("too far"), std::string::npos) << e.what();
   }
 }
 

@@ -325,9 +325,9 @@ TEST(Parser, ReportsLineOfUnknownKeyword) {
 }
 
 TEST(Parser, ReportsUnknownObjectKind) {
-  expect_error(
-      "\"s\"\nObject \"w\" Group {", 2, 12,
-      "unknown keyword 'Group': expected 'Assembly', 'Composite', 'Pure', 'Copy' or 'Model'");
+  expect_error("\"s\"\nObject \"w\" Mesh {", 2, 12,
+               "unknown keyword 'Mesh': expected 'Assembly', 'Composite', 'Pure', 'Light', 'Copy' "
+               "or 'Model'");
 }
 
 TEST(Parser, ReportsKeywordsAreCaseSensitive) {
