@@ -285,7 +285,8 @@ Photometry parse_ies(std::string_view text, const std::string& path) {
                                      double(h0), double(h1)));
   }
   const double scale = double(p.multiplier) * p.ballast_factor * p.ballast_lamp_factor;
-  p.candela.reserve(size_t(nv * nh));
+  // Each value takes two characters at least: a count the text cannot hold reserves no more.
+  p.candela.reserve(std::min(size_t(nv * nh), text.size() / 2));
   for (long long h = 0; h < nh; ++h) {
     for (long long v = 0; v < nv; ++v) {
       SourceLoc at;
