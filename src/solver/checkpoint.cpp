@@ -53,7 +53,14 @@ uint64_t solve_fingerprint(const Hierarchy& h, const SolverOptions& o, BackendKi
   f.add(uint64_t(h.lights.size()));
   for (const Light& l : h.lights) {
     f.add(l.kind).add(l.position).add(l.direction).add(l.colour).add(l.intensity);
-    f.add(l.inner_cone).add(l.outer_cone).add(l.angular_diameter);
+    f.add(l.inner_cone).add(l.outer_cone).add(l.angular_diameter).add(l.photometric_up);
+    // An IES table by its values: another file, or the same file changed, is another solve.
+    f.add(l.photometry != nullptr);
+    if (l.photometry) {
+      const Photometry& p = *l.photometry;
+      for (const std::vector<float>* v : {&p.vertical, &p.horizontal, &p.candela})
+        f.add(uint64_t(v->size())).bytes(v->data(), v->size() * sizeof(float));
+    }
   }
   f.add(o.shadows).add(o.sample_grid).add(o.max_sample_grid).add(o.method);
   f.add(o.subdivision_threshold).add(o.midpoints).add(o.min_size).add(o.max_size);

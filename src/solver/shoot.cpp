@@ -146,7 +146,9 @@ const Receivers& shoot_to_receivers(SolverState& s, const ShotSource& src,
     for (const VertexCopy& c : shared.copies[p]) {
       if (!received[c.from_polygon]) continue;
       const Vec3 dh = s.solution.vertex_states[c.from_polygon][c.from_vertex].last_gain;
-      vs[c.vertex].receive(dh, rho, major, !s.scene.buried.is_moved(c.from_polygon, c.from_vertex));
+      // Whether it shoots is the copy's own (each polygon probes toward its own centroid, so a
+      // shared vertex may be buried for one and not the other): what refinement reads back.
+      vs[c.vertex].receive(dh, rho, major, !s.scene.buried.is_moved(p, c.vertex));
     }
   });
   return s.receivers;

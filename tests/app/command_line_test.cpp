@@ -739,3 +739,35 @@ TEST(CommandLine, EmitGivenToADescriptionIsRefused) {
 }
 
 }  // namespace
+
+namespace {
+
+// A description lit by a Light object alone: rad solves it, prints each object's illuminance
+// and writes the light arriving into the PLY and the stats.
+TEST(CommandLine, ADescriptionLitByALightPrintsItsObjectsIlluminance) {
+  const fs::path dir = fs::temp_directory_path() / ("rad_test_light_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  {
+    std::ofstream des(dir / "lamp.des");
+    des << "\"lamp over a floor\"\n"
+           "Object \"floor\" Pure { Reflectivity 0.5 Color <1 1 1> Emission 0\n"
+           "  Data { <-2 0 -2> <-2 0 2> <2 0 2>  <-2 0 -2> <2 0 2> <2 0 -2> } }\n"
+           "Object \"lamp\" Light { Type Point Position <0 2 0> Intensity 400 }\n";
+  }
+  const RadRun r = run_rad((dir / "lamp.des").string() + " " + (dir / "lamp.ply").string() +
+                           " --stats-json " + (dir / "lamp.json").string());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("Illuminance"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("floor"), std::string::npos) << r.out;
+  const std::string json = read_file(dir / "lamp.json");
+  EXPECT_NE(json.find("\"lights\": 1"), std::string::npos);
+  // 400 cd 2 m straight above: 100 lx at the floor's centre, the most it gets.
+  const size_t at = json.find("\"max\": ");
+  ASSERT_NE(at, std::string::npos) << json;
+  EXPECT_NEAR(std::stod(json.substr(at + 7)), 100.0, 0.1) << json;
+  const std::string ply = read_file(dir / "lamp.ply");
+  EXPECT_NE(ply.find("property float irradiance_r"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+}  // namespace

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "scene/ies_reader.h"
 #include "scene_builder.h"
 #include "solver/solver.h"
 #include "visibility/backend.h"
@@ -90,6 +91,38 @@ TEST(Lights, OneCandelaOneMetreStraightAboveGivesOneLux) {
     }
   }
   EXPECT_TRUE(found);
+}
+
+TEST(Lights, AnIesLightGivesEveryVertexItsTablesCandelaInterpolated) {
+  // A downlight of I(gamma) = 1000 cos(gamma) candela, tabulated every 5 degrees from the nadir
+  // to 90 (rotationally symmetric), 1.2 m over the floor and turned a little: every vertex
+  // in front gets I(gamma) h / r^3, the table interpolated between its angles (the
+  // interpolation's error for a cosine 5 degrees apart is below 0.1%).
+  std::string ies = "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 19 1 1 2 0 0 0\n1 1 10\n";
+  for (int k = 0; k <= 90; k += 5) ies += std::to_string(k) + " ";
+  ies += "\n0\n";
+  for (int k = 0; k <= 90; k += 5)
+    ies += std::to_string(1000.0 * std::cos(double(k) * std::numbers::pi / 180.0)) + " ";
+  ies += "\n";
+  Hierarchy h = build_hierarchy(black_floor());
+  Light l = point_light(Vec3(0.2f, 1.2f, 0.1f), 1.0f);
+  l.photometry = std::make_shared<const Photometry>(parse_ies(ies, "cosine.ies"));
+  l.direction = glm::normalize(Vec3(0.1f, -1.0f, 0.05f));
+  l.photometric_up = default_photometric_up(l.direction);
+  h.lights.push_back(l);
+  const SolverState s = solve_lit(h);
+  size_t checked = 0;
+  expect_every_vertex(
+      s,
+      [&](const Vec3& x) {
+        const Vec3 d = x - l.position;
+        const float r = glm::length(d);
+        const float cos_gamma = glm::dot(d / r, l.direction);
+        if (cos_gamma <= 0.01f) return 0.0f;
+        return 1000.0f * cos_gamma * l.position.y / (r * r * r);
+      },
+      5e-3f, &checked);
+  EXPECT_GT(checked, 200u);
 }
 
 TEST(Lights, ASpotLightIsExactInsideItsInnerConeAndDarkOutsideItsOuter) {
