@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -238,6 +239,13 @@ class Builder {
     scene_.objects.push_back(std::move(o));
     return int32_t(scene_.objects.size()) - 1;
   }
+  int32_t light(std::string name, Light l) {
+    ObjectDescription o;
+    o.name = l.name = std::move(name);
+    o.light = std::move(l);
+    scene_.objects.push_back(std::move(o));
+    return int32_t(scene_.objects.size()) - 1;
+  }
   int32_t group(ObjectKind kind, std::string name, std::vector<int32_t> children) {
     ObjectDescription o;
     o.name = std::move(name);
@@ -404,7 +412,7 @@ SceneDescription make_teapot_in_stadium(int stacks) {
 }
 
 SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess, uint64_t seed,
-                               int lights_reach) {
+                               int lights_reach, bool point_lights) {
   nx = std::max(nx, 1), nz = std::max(nz, 1);
   const int t = std::max(wall_tess, 1), f = std::max(furniture_tess, 1);
   Rng rng(seed);
@@ -442,9 +450,17 @@ SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess
       std::vector<int32_t> room;
       std::string name = fmt::format("room{}_{}", i, k);
       room.push_back(b.pure(name + ".shell", grey(0.7f), std::move(shell)));
-      Tris lamp;
-      add_quad(lamp, o + Vec3(2.0f, h - 0.01f, 2.0f), X, Z, 1, 1, -Y);
-      room.push_back(b.pure(name + ".light", light(8.0f), std::move(lamp)));
+      if (point_lights) {
+        Light l;
+        l.kind = LightKind::Point;
+        l.position = o + Vec3(2.5f, h - 0.3f, 2.5f);
+        l.intensity = 8.0f / std::numbers::pi_v<float>;
+        room.push_back(b.light(name + ".light", l));
+      } else {
+        Tris lamp;
+        add_quad(lamp, o + Vec3(2.0f, h - 0.01f, 2.0f), X, Z, 1, 1, -Y);
+        room.push_back(b.pure(name + ".light", light(8.0f), std::move(lamp)));
+      }
       Vec3 table_at = o + Vec3(rng.uniform(1.0f, 2.8f), 0.0f, rng.uniform(1.0f, 2.8f));
       room.push_back(furniture(b, true, table_at, 1.0f, f, serial++));
       for (int c = 0; c < 3; ++c) {
@@ -620,8 +636,8 @@ SceneDescription make_furnished_room(int q, uint64_t seed) {
   return b.take();
 }
 
-SceneDescription generate_scene(SceneKind kind, uint64_t triangles, uint64_t seed,
-                                int lights_reach) {
+SceneDescription generate_scene(SceneKind kind, uint64_t triangles, uint64_t seed, int lights_reach,
+                                bool point_lights) {
   double n = double(std::max<uint64_t>(triangles, 1));
   switch (kind) {
     case SceneKind::CornellBox:
@@ -639,7 +655,8 @@ SceneDescription generate_scene(SceneKind kind, uint64_t triangles, uint64_t see
     case SceneKind::Building: {
       int rooms = std::max(1, int(std::lround(n / 1600.0)));
       int nx = std::max(1, int(std::lround(std::sqrt(double(rooms)))));
-      return make_building(nx, std::max(1, (rooms + nx - 1) / nx), 4, 2, seed, lights_reach);
+      return make_building(nx, std::max(1, (rooms + nx - 1) / nx), 4, 2, seed, lights_reach,
+                           point_lights);
     }
     case SceneKind::FurnishedRoom: {
       // The triangle count grows about as q^2: counted at q = 4, then scaled.
