@@ -237,8 +237,7 @@ Hierarchy build_hierarchy(const SceneDescription& scene, const BuildLimits& limi
   b.resolve_lights();
   // Shadow rays leave their surfaces by 1e-5 of the diagonal (visibility/segment.h); beyond 10
   // diagonals from the origin that is under 8 float steps of the coordinates, and the backends'
-  // answers near surfaces come down to rounding (measured: a box 760 diagonals out made Embree
-  // and brute force disagree on 1 ray in 15,000).
+  // answers near surfaces come down to rounding: they may disagree on a ray in thousands.
   if (warn && h.bounds.diagonal() > 0.0f && h.bounds.magnitude() > 10.0f * h.bounds.diagonal()) {
     rad::warn(
         {scene.path},

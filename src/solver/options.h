@@ -38,9 +38,8 @@ struct SolverOptions {
   bool shadows = true;  // false: every visibility term is 1 (-noshadows)
   /// A source polygon gets n = m^2 samples, m from sample_grid up to max_sample_grid: the
   /// least m that puts its samples no farther apart than the initial mesh's element size, or
-  /// max_sample_grid when none in range does (the Cornell walls would want 13).
-  /// Regular samples alias against occluders on a big source; measured on the Cornell box (walls
-  /// two triangles each), 16 samples everywhere left every surface ~0.9% too dark.
+  /// max_sample_grid when none in range does. Regular samples alias against occluders on a big
+  /// source: a big wall with the fewest samples leaves the surfaces it lights too dark.
   int sample_grid = 4;
   int max_sample_grid = 8;
   FormFactorMethod method = FormFactorMethod::Analytic;

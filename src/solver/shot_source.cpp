@@ -146,7 +146,7 @@ ShotSource make_shot_source(const SolverState& s, int32_t c) {
     // The kernel is evaluated at the stratum's centroid with its mean normal (the midpoint rule,
     // second order in the spacing). The shadow ray ends on the surface where the stratum's power
     // is: at its area centroid, a stratum half under a block standing on it would have its lit
-    // half's power blocked (measured: 7% of a floor cluster's shot lost in the closed Cornell box).
+    // half's power blocked, and a floor's shot would lose what its lit part sends.
     const FinePoint& p = fine[nearest[g]];
     const Vec3 u(unshot[g] / area[g]);
     const DVec3 nm = normal[g] / std::max(glm::length(normal[g]), 1e-30);

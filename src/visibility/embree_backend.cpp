@@ -155,13 +155,13 @@ class EmbreeBackend final : public VisibilityBackend {
     scene_ = rtcNewScene(device_);
     check("creating the scene");
     // ROBUST although it is slower: the fast mode's box tests are not conservative, and an
-    // axis-aligned triangle's box is flat: an 8-wide packet then skipped a block's face that the
-    // same rays traced singly hit (found by rad --cross-check on a generated Cornell box).
+    // axis-aligned triangle's box is flat: an 8-wide packet can then skip a face that the same
+    // rays traced singly hit, and the backends would disagree.
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
     rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
     // One geometry per Pure over the flattened world triangles: as fast as one big mesh, and no
-    // instances (only one instancing level in this build, and coherent packets on instanced
-    // scenes hung on this machine's AVX-512 path).
+    // instances (Debian's Embree 3 is built with one instancing level, and coherent packets over
+    // instanced scenes hang in its AVX-512 path).
     geometry_data_.reserve(h.objects.size());
     for (const SceneObject& o : h.objects) {
       // A Pure that casts no shadows is left out: the shared test would reject its hits anyway.

@@ -16,16 +16,18 @@ mpi() { local n="$1"; shift; timeout 300 mpirun -np "$n" --oversubscribe "$rad" 
 
 same_bytes() {
   "$gen" building "$d/building.des" --size 3200 --lights-reach 1 >/dev/null || fail "rad-gen"
+  "$gen" building "$d/lit.des" --size 3200 --point-lights >/dev/null || fail "rad-gen lights"
   "$rad" convert "$scenes/cornell_box.des" "$d/cornell.obj" -q || fail "convert"
   # name|ranks|scene|options (1, 2, 3 and 4 ranks): nested objects and OFF files, Lights lists,
-  # a run without overshooting, a model with its automatic hierarchy, and a run to convergence
-  # (the stop test on exact sums).
+  # a run without overshooting, a model with its automatic hierarchy, a run to convergence
+  # (the stop test on exact sums), and point lights (every rank shoots each).
   local runs=(
     "original|1 2 4|$scenes/original_style.des|--max-shots 30"
     "building|2 3|$d/building.des|--max-shots 60"
     "no-overshoot|2|$scenes/furnace_box.des|--max-shots 20 --no-overshoot"
     "model|3|$d/cornell.obj|--max-shots 20"
     "converged|2|$scenes/cornell_box.des|--converge 0.03"
+    "lights|2|$d/lit.des|--max-shots 40"
   )
   for run in "${runs[@]}"; do
     IFS='|' read -r name ranks scene opts <<<"$run"
