@@ -210,7 +210,6 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   for (const ShotBalance& b : balance) s.energy.cluster_retention.push_back(b.retention());
   s.energy.cluster_balance = std::move(balance);
   s.energy.light_unshot = std::move(light_unshot);
-  update_light_unshot(s.energy);
   update_unshot_totals(s.energy, s.solution, s.scene.clusters, s.ownership.ranks);
 }
 

@@ -250,12 +250,6 @@ void exact_energy_sums(const EnergyBalance& e, Ranks* ranks,
   for (size_t k = 0; k < terms.size(); ++k) sums[k] = double(fixed[k]) / scale;
 }
 
-void update_light_unshot(EnergyBalance& e) {
-  e.light_unshot_energy = 0.0;
-  for (size_t i = 0; i < e.light_unshot.size(); ++i)
-    e.light_unshot_energy += e.light_power[i] * double(mean_component(glm::abs(e.light_unshot[i])));
-}
-
 float ambient_estimate(const EnergyBalance& e) {
   if (e.total_area <= 0.0) return 0.0f;
   return float(e.unshot_signed_total / e.total_area * e.interreflection);

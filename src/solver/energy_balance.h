@@ -84,14 +84,20 @@ struct EnergyBalance {
   std::array<Fixed128, 3> lost_reflectance{};
   /// Per light of the scene (Hierarchy::lights): what it has still to shoot per channel (its
   /// colour until its shot, then 0), and its power per unit of colour (light_power,
-  /// light_source.h); the lights' part of the unshot energy, the sum of the two's products.
-  /// The same on every rank: every rank shoots every light.
+  /// light_source.h). The same on every rank: every rank shoots every light.
   std::vector<Vec3> light_unshot;
   std::vector<double> light_power;
-  double light_unshot_energy = 0.0;
+
+  /// The lights' part of the unshot energy: each light's power times its unshot colour's mean.
+  double light_unshot_energy() const {
+    double e = 0.0;
+    for (size_t i = 0; i < light_unshot.size(); ++i)
+      e += light_power[i] * double(mean_component(glm::abs(light_unshot[i])));
+    return e;
+  }
 
   double unshot_fraction() const {
-    const double unshot = unshot_abs_total + light_unshot_energy;
+    const double unshot = unshot_abs_total + light_unshot_energy();
     return reference_energy > 0.0 ? unshot / reference_energy : (unshot > 0.0 ? 1.0 : 0.0);
   }
 };
@@ -158,9 +164,6 @@ void set_retention(EnergyBalance& e, const Solution& solution, const Clusters& c
 /// any split of the terms between the ranks.
 void exact_energy_sums(const EnergyBalance& e, Ranks* ranks,
                        std::span<const std::span<const double>> terms, std::span<double> sums);
-
-/// Sets e.light_unshot_energy from the lights' unshot colours and powers.
-void update_light_unshot(EnergyBalance& e);
 
 /// Cohen et al. 1988 ambient term: the unshot energy spread over the scene and reflected
 /// 1/(1 - mean reflectance) times. For display only; never added to stored radiosity.

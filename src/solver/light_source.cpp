@@ -5,25 +5,23 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/planar_geometry.h"
+
 namespace rad {
 
 namespace {
 
-// Two unit vectors completing the unit vector a to a right-handed orthonormal frame (Frisvad's
-// construction as revised by Duff et al. 2017: no branch near a pole but the sign).
-void frame(const Vec3& a, Vec3& e1, Vec3& e2);
-
-// A light's axis: its direction, or straight down for a point light given none.
+// A light's axis: its direction (unit from every reader), or straight down for a point light
+// given none.
 Vec3 axis_of(const Light& l) {
-  const float len = glm::length(l.direction);
-  return len > 0.0f ? l.direction / len : Vec3(0.0f, -1.0f, 0.0f);
+  return l.direction != Vec3(0.0f) ? l.direction : Vec3(0.0f, -1.0f, 0.0f);
 }
 
+// Two unit vectors completing the unit vector a to an orthonormal frame.
 void frame(const Vec3& a, Vec3& e1, Vec3& e2) {
-  const float sign = std::copysign(1.0f, a.z);
-  const float p = -1.0f / (sign + a.z), q = a.x * a.y * p;
-  e1 = Vec3(1.0f + sign * a.x * a.x * p, sign * q, -sign * a.x);
-  e2 = Vec3(q, sign + a.y * a.y * p, -a.y);
+  DVec3 u, w;
+  plane_frame(DVec3(a), u, w);
+  e1 = Vec3(u), e2 = Vec3(w);
 }
 
 }  // namespace
@@ -42,7 +40,7 @@ ShotSource make_light_source(const std::vector<Light>& lights, int32_t index, co
     // Toward the sun: its disc's points spread by area (a Vogel spiral: ring k at radius
     // sqrt((k + 1/2) / n), turned by the golden angle), each direction as far off the centre as
     // its point lies on the disc.
-    const Vec3 toward = -glm::normalize(l.direction);
+    const Vec3 toward = -l.direction;
     Vec3 e1, e2;
     frame(toward, e1, e2);
     const float radius = std::tan(0.5f * l.angular_diameter);
@@ -71,7 +69,7 @@ ShotSource make_light_source(const std::vector<Light>& lights, int32_t index, co
 float light_illuminance(const ShotSource& src, const Vec3& x, const Vec3& n) {
   const Light& l = *src.emitter;
   if (l.kind == LightKind::Directional) {
-    const float c = -glm::dot(n, l.direction) / glm::length(l.direction);
+    const float c = -glm::dot(n, src.axis);
     return c > 0.0f ? l.intensity * c : 0.0f;
   }
   const Vec3 d = l.position - x;
@@ -86,7 +84,7 @@ float light_illuminance(const ShotSource& src, const Vec3& x, const Vec3& n) {
 double light_power(const Light& l, const Aabb& bounds) {
   if (l.kind == LightKind::Directional) {
     // E times the area of the box's shadow across the direction.
-    const Vec3 d = glm::normalize(l.direction);
+    const Vec3 d = l.direction;
     const Vec3 e = bounds.empty() ? Vec3(0.0f) : bounds.extent();
     const double shadow = std::abs(double(d.x)) * e.y * e.z + std::abs(double(d.y)) * e.x * e.z +
                           std::abs(double(d.z)) * e.x * e.y;
@@ -115,7 +113,7 @@ double light_power(const Light& l, const Aabb& bounds) {
 
 bool light_reaches(const ShotSource& src, const std::array<Vec3, 3>& c, const Vec3& n) {
   const Light& l = *src.emitter;
-  if (l.kind == LightKind::Directional) return glm::dot(n, l.direction) < 0.0f;
+  if (l.kind == LightKind::Directional) return glm::dot(n, src.axis) < 0.0f;
   return glm::dot(l.position - c[0], n) > 0.0f;
 }
 

@@ -227,7 +227,6 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
     const int32_t i = int32_t(light - s.energy.light_unshot.begin());
     src = make_light_source(s.solution.hierarchy->lights, i, *light, s.solution.hierarchy->bounds);
     *light = Vec3(0.0f);
-    update_light_unshot(s.energy);
   } else {
     shooter = choose_shooter(s);
     if (!shooter) return std::nullopt;

@@ -92,8 +92,7 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
     energy.light_unshot.push_back(l.colour);
     energy.light_power.push_back(light_power(l, h.bounds));
   }
-  update_light_unshot(energy);
-  energy.emitted_energy += energy.light_unshot_energy;
+  energy.emitted_energy += energy.light_unshot_energy();
   energy.reference_energy = energy.emitted_energy;
   energy.total_area = total_area;
   energy.radiosity_scale = total_area > 0.0 ? float(energy.emitted_energy / total_area) : 1.0f;

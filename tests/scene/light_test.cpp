@@ -16,6 +16,7 @@
 #include "scene/gltf_reader.h"
 #include "scene/model_scene.h"
 #include "scene/parser.h"
+#include "scene_texts.h"
 
 namespace rad {
 namespace {
@@ -58,21 +59,11 @@ const std::string kFloor =
     "Object \"floor\" Pure { Reflectivity 0.5 Color <1 1 1> Emission 0\n"
     "  Data { <-5 0 -5> <-5 0 5> <5 0 5> } }\n";  // lines 2-3 after the scene's name
 
-Error description_error(const std::string& text, const std::string& path = "scene.des") {
-  try {
-    parse_scene_text(text, path);
-  } catch (const Error& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no error for:\n" << text;
-  return Error("none");
-}
-
 // The light on line 4 (after the name and the floor) fails at the last `at` in it saying
 // `substring`.
 void expect_light_error(const std::string& light, const std::string& at,
                         const std::string& substring) {
-  const Error e = description_error("\"s\"\n" + kFloor + light + "\n");
+  const Error e = testing::parse_error("\"s\"\n" + kFloor + light + "\n");
   EXPECT_EQ(e.loc().line, 4) << e.what();
   EXPECT_EQ(e.loc().column, int(light.rfind(at)) + 1) << e.what();
   EXPECT_NE(e.message().find(substring), std::string::npos) << e.what();
@@ -161,14 +152,14 @@ Object "b" Light { Type Spot Position <1 2 0> Direction <0 -1 0> Cone 40 60 Ies 
   EXPECT_NEAR(intensity_toward(b, Vec3(0, -1, 0)), 2000.0f, 1e-2f);
 
   // A missing file is reported at its name; a malformed one at its own line.
-  const Error missing = description_error(
+  const Error missing = testing::parse_error(
       "\"s\"\n" + kFloor + "Object \"c\" Light { Type Point Position <0 1 0> Ies \"no.ies\" }\n",
       (dir / "scene.des").string());
   EXPECT_EQ(missing.loc().line, 4);
   EXPECT_EQ(missing.loc().column, 52);
   EXPECT_NE(missing.message().find("no such file"), std::string::npos) << missing.what();
   write("lamps/bad.ies", "IESNA:LM-63-2002\nTILT=NONE\n1 800 1 3 1 1 2 0 0 0\n1 1 10\n0 90 45\n");
-  const Error bad = description_error(
+  const Error bad = testing::parse_error(
       "\"s\"\n" + kFloor + "Object \"c\" Light { Type Point Position <0 1 0> Ies lamps/bad.ies }\n",
       (dir / "scene.des").string());
   EXPECT_EQ(bad.loc().file, (dir / "lamps/bad.ies").string());
@@ -216,21 +207,6 @@ TEST(LightDescription, EachBadLightIsRefusedAtItsToken) {
 
 // ---- glTF KHR_lights_punctual ------------------------------------------------------------------
 
-std::string base64(const std::string& in) {
-  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (size_t i = 0; i < in.size(); i += 3) {
-    uint32_t v = uint32_t(uint8_t(in[i])) << 16;
-    if (i + 1 < in.size()) v |= uint32_t(uint8_t(in[i + 1])) << 8;
-    if (i + 2 < in.size()) v |= uint32_t(uint8_t(in[i + 2]));
-    out += k[(v >> 18) & 63];
-    out += k[(v >> 12) & 63];
-    out += i + 1 < in.size() ? k[(v >> 6) & 63] : '=';
-    out += i + 2 < in.size() ? k[v & 63] : '=';
-  }
-  return out;
-}
-
 // A floor (a 10 m quad at y = 0, facing up), unlit, and the lights and their nodes given.
 std::string lit_gltf(const std::string& lights, const std::string& nodes,
                      const std::string& scene_nodes) {
@@ -255,7 +231,7 @@ std::string lit_gltf(const std::string& lights, const std::string& nodes,
     "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
                     {"buffer": 0, "byteOffset": 48, "byteLength": 12}],
     "buffers": [{"byteLength": 60, "uri": "data:application/octet-stream;base64,)" +
-         base64(buf) + R"("}]})";
+         testing::base64(buf) + R"("}]})";
 }
 
 const std::string kThreeLights =

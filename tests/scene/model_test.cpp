@@ -21,6 +21,7 @@
 #include "scene/parser.h"
 #include "scene/ply_reader.h"
 #include "scene/scene_file.h"
+#include "scene_texts.h"
 
 namespace rad {
 namespace {
@@ -311,21 +312,6 @@ Object "floor 2" Copy "floor" Translate <10 0 0>
 namespace rad {
 namespace {
 
-std::string base64(const std::string& in) {
-  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (size_t i = 0; i < in.size(); i += 3) {
-    uint32_t v = uint32_t(uint8_t(in[i])) << 16;
-    if (i + 1 < in.size()) v |= uint32_t(uint8_t(in[i + 1])) << 8;
-    if (i + 2 < in.size()) v |= uint32_t(uint8_t(in[i + 2]));
-    out += k[(v >> 18) & 63];
-    out += k[(v >> 12) & 63];
-    out += i + 1 < in.size() ? k[(v >> 6) & 63] : '=';
-    out += i + 2 < in.size() ? k[v & 63] : '=';
-  }
-  return out;
-}
-
 // One unit quad mesh placed by three nodes: moved, moved under a parent, mirrored.
 std::string quad_gltf(const std::string& extra_node = "") {
   std::string buf;
@@ -351,7 +337,7 @@ std::string quad_gltf(const std::string& extra_node = "") {
     "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
                     {"buffer": 0, "byteOffset": 48, "byteLength": 12}],
     "buffers": [{"byteLength": 60, "uri": "data:application/octet-stream;base64,)" +
-         base64(buf) + R"("}]})";
+         testing::base64(buf) + R"("}]})";
 }
 
 TEST_F(ModelFiles, GltfNodeTransformsComposeAndInstancesAreFlattened) {
@@ -416,9 +402,9 @@ TEST_F(ModelFiles, GltfOfVersionOneOrCompressedMeshesIsRefusedSayingHowToConvert
   std::string looks = quad_gltf();
   looks.replace(looks.find("\"extensionsUsed\""), 0,
                 "\"extensionsRequired\": [\"KHR_materials_pbrSpecularGlossiness\"],\n");
-  testing::internal::CaptureStderr();
+  ::testing::internal::CaptureStderr();
   EXPECT_EQ(parse_gltf(looks, "looks.gltf", "").groups.size(), 3u);
-  const std::string warned = testing::internal::GetCapturedStderr();
+  const std::string warned = ::testing::internal::GetCapturedStderr();
   EXPECT_NE(warned.find("KHR_materials_pbrSpecularGlossiness is required but rad ignores it"),
             std::string::npos)
       << warned;

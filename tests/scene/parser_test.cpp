@@ -9,6 +9,8 @@
 #include <glm/mat4x4.hpp>
 #include <string>
 
+#include "scene_texts.h"
+
 namespace rad {
 namespace {
 
@@ -20,18 +22,8 @@ std::string pure(const std::string& name, const std::string& body = "") {
          (body.empty() ? "Data { <0 0 0> <1 0 0> <0 1 0> }" : body) + " }\n";
 }
 
-Error parse_error(std::string_view text, const std::string& path = "scene.des") {
-  try {
-    parse_scene_text(text, path);
-  } catch (const Error& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no error for:\n" << text;
-  return Error("none");
-}
-
 void expect_error(std::string_view text, int line, int column, const std::string& substring) {
-  Error e = parse_error(text);
+  Error e = testing::parse_error(text);
   EXPECT_EQ(e.loc().file, "scene.des");
   EXPECT_EQ(e.loc().line, line) << e.what();
   EXPECT_EQ(e.loc().column, column) << e.what();
@@ -209,7 +201,7 @@ TEST_F(ParserFiles, ReadsFileNameFollowedDirectlyByBrace) {
 }
 
 TEST_F(ParserFiles, ReportsMissingFileAtItsName) {
-  Error e = parse_error("\"s\"\n" + pure("w", "File  off/none.off"), path("scene.des"));
+  Error e = testing::parse_error("\"s\"\n" + pure("w", "File  off/none.off"), path("scene.des"));
   EXPECT_EQ(e.loc().file, path("scene.des"));
   EXPECT_EQ(e.loc().line, 2);
   EXPECT_EQ(e.loc().column, 67);
@@ -217,14 +209,14 @@ TEST_F(ParserFiles, ReportsMissingFileAtItsName) {
 }
 
 TEST_F(ParserFiles, ReportsFolderGivenAsFile) {
-  Error e = parse_error("\"s\"\n" + pure("w", "File off"), path("scene.des"));
+  Error e = testing::parse_error("\"s\"\n" + pure("w", "File off"), path("scene.des"));
   EXPECT_EQ(e.loc().column, 66);
   EXPECT_NE(e.message().find("not a regular file"), std::string::npos) << e.what();
 }
 
 TEST_F(ParserFiles, ReportsErrorsInsideTheOffFileAtTheOffFile) {
   write("off/bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
-  Error e = parse_error("\"s\"\n" + pure("w", "File off/bad.off"), path("scene.des"));
+  Error e = testing::parse_error("\"s\"\n" + pure("w", "File off/bad.off"), path("scene.des"));
   EXPECT_EQ(e.loc().file, path("off/bad.off"));
   EXPECT_EQ(e.loc().line, 6);
   EXPECT_EQ(e.loc().column, 7);
@@ -315,7 +307,8 @@ TEST(Parser, ReportsBadCopiesAndTransforms) {
 }
 
 TEST(Parser, FormatsErrorsAsPathLineColumn) {
-  Error e = parse_error("\"s\"\nObject \"w\" Pure { Reflectivity 0.5 Color <1 1 1>\n  Object");
+  Error e =
+      testing::parse_error("\"s\"\nObject \"w\" Pure { Reflectivity 0.5 Color <1 1 1>\n  Object");
   EXPECT_STREQ(e.what(), "scene.des:3:3: error: expected 'Emission' but found 'Object'");
 }
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 #include <numbers>
 
 #include "scene/ies_reader.h"
@@ -75,6 +76,51 @@ TEST(Lights, APointLightGivesEveryVertexIhOverRCubed) {
       1e-3f, &checked);
   EXPECT_GT(checked, 200u);
 }
+
+// The floor and its lamp cut finer, moved, turned about a skew axis and scaled: every vertex
+// still gets I h / r^3 of its own placement (h its height over the floor's plane).
+struct Placement {
+  const char* name;
+  int cuts;
+  Vec3 move;
+  float degrees;
+  float scale;
+};
+
+class LightPlacement : public ::testing::TestWithParam<Placement> {};
+
+TEST_P(LightPlacement, APointLightGivesEveryVertexIhOverRCubedWhereverItStands) {
+  const Placement pl = GetParam();
+  const glm::mat3 turn = glm::mat3(glm::rotate(glm::mat4(1.0f), glm::radians(pl.degrees),
+                                               glm::normalize(Vec3(1.0f, 2.0f, 3.0f))));
+  auto place = [&](const Vec3& p) { return turn * (p * pl.scale) + pl.move; };
+  SceneDescription d;
+  testing::add_quad(d, "floor", place(Vec3(-2, 0, 2)), place(Vec3(2, 0, 2)), place(Vec3(2, 0, -2)),
+                    place(Vec3(-2, 0, -2)), Vec3(0.0f), Vec3(0.0f), pl.cuts);
+  Hierarchy h = build_hierarchy(d);
+  const Vec3 at = place(Vec3(0.3f, 2.0f, -0.7f)), up = turn * Vec3(0.0f, 1.0f, 0.0f);
+  h.lights.push_back(point_light(at, 100.0f));
+  const SolverState s = solve_lit(h);
+  size_t checked = 0;
+  expect_every_vertex(
+      s,
+      [&](const Vec3& x) {
+        const float r = glm::length(at - x), height = glm::dot(at - x, up);
+        return 100.0f * height / (r * r * r);
+      },
+      1e-3f, &checked);
+  EXPECT_GT(checked, 200u);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Placements, LightPlacement,
+    ::testing::Values(Placement{"AsBuilt", 8, Vec3(0.0f), 0.0f, 1.0f},
+                      Placement{"CutFiner", 32, Vec3(0.0f), 0.0f, 1.0f},
+                      Placement{"Moved", 8, Vec3(12.34f, -5.6f, 7.89f), 0.0f, 1.0f},
+                      Placement{"Turned", 8, Vec3(0.0f), 33.0f, 1.0f},
+                      Placement{"ScaledUp", 8, Vec3(0.0f), 0.0f, 10.0f},
+                      Placement{"ScaledDownTurnedMoved", 8, Vec3(-3.0f, 1.0f, 2.0f), 71.0f, 0.01f}),
+    [](const auto& info) { return std::string(info.param.name); });
 
 TEST(Lights, OneCandelaOneMetreStraightAboveGivesOneLux) {
   Hierarchy h = build_hierarchy(black_floor());
