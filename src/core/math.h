@@ -2,11 +2,15 @@
 #pragma once
 
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 namespace rad {
 
+using Vec2 = glm::vec2;
 using Vec3 = glm::vec3;
+using Vec4 = glm::vec4;
 using DVec3 = glm::dvec3;
 
 /// Largest of the three components.

@@ -82,27 +82,30 @@ void OutputMeshBuilder::values(const SolverState& s, Vec3 ambient, OutputMesh& o
   radiosity.clear(), display.clear(), irradiance.clear();
   const size_t count = geometry_ ? geometry_->position.size() : 0;
   radiosity.reserve(count), display.reserve(count), irradiance.reserve(count);
-  auto h = [&](size_t p, uint32_t v) { return s.solution.vertex_states[p][v].irradiance; };
+  const Solution& sol = s.solution;
+  auto h = [&](size_t p, uint32_t v) { return sol.vertex_states[p][v].irradiance; };
+  auto shown = [&](size_t p, uint32_t v) { return sol.reflectance(p, v) * ambient; };
   for (size_t p = 0; p < polygons_.size(); ++p) {
-    const size_t first = radiosity.size();
     const uint32_t n = uint32_t(polygons_[p].vertices);
     for (uint32_t v = 0; v < n; ++v) {
-      radiosity.push_back(s.solution.radiosity(p, v));
+      radiosity.push_back(sol.radiosity(p, v));
       irradiance.push_back(h(p, v));
+      display.push_back(radiosity.back() + shown(p, v));
     }
     for (const auto& k : polygons_[p].faces.centroids) {
-      radiosity.push_back((s.solution.radiosity(p, k[0]) + s.solution.radiosity(p, k[1]) +
-                           s.solution.radiosity(p, k[2])) /
-                          3.0f);
+      radiosity.push_back(
+          (sol.radiosity(p, k[0]) + sol.radiosity(p, k[1]) + sol.radiosity(p, k[2])) / 3.0f);
       irradiance.push_back((h(p, k[0]) + h(p, k[1]) + h(p, k[2])) / 3.0f);
+      display.push_back(radiosity.back() +
+                        (sol.texture_factors[p].empty()
+                             ? shown(p, k[0])
+                             : (shown(p, k[0]) + shown(p, k[1]) + shown(p, k[2])) / 3.0f));
     }
     for (const VertexRef& r : polygons_[p].faces.seam) {
-      radiosity.push_back(s.solution.radiosity(r.polygon, r.vertex));
+      radiosity.push_back(sol.radiosity(r.polygon, r.vertex));
       irradiance.push_back(h(r.polygon, r.vertex));
-    }
-    const Material& mat = s.solution.material_of(p);
-    for (size_t v = first; v < radiosity.size(); ++v) {
-      display.push_back(radiosity[v] + mat.reflectance * ambient);
+      // A neighbour's vertex on this polygon's edge, shown with this polygon's material.
+      display.push_back(radiosity.back() + sol.material_of(p).reflectance * ambient);
     }
   }
 }

@@ -54,11 +54,16 @@ struct Regrouper {
     p.kind = ObjectKind::Pure;
     p.loc = o.loc;
     p.material = o.material;
+    p.base_texture = o.base_texture;
     if (!o.casts_shadows) p.flags.casts_shadows = false;
     if (!o.receives_shadows) p.flags.receives_shadows = false;
     if (with_triangles) {
       p.triangles.assign(h.triangles.corners.begin() + o.first_triangle,
                          h.triangles.corners.begin() + o.first_triangle + o.triangle_count);
+      if (!h.triangles.uv.empty()) {
+        p.triangle_uvs.assign(h.triangles.uv.begin() + o.first_triangle,
+                              h.triangles.uv.begin() + o.first_triangle + o.triangle_count);
+      }
     }
     out.objects.push_back(std::move(p));
     source.resize(out.objects.size(), -1);

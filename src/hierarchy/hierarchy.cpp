@@ -55,6 +55,7 @@ struct Builder {
       o.loc = d.loc;
       o.parent = parent;
       o.material = content->material;
+      o.base_texture = content->base_texture;
       o.first_triangle = static_cast<uint32_t>(out.triangles.size());
       const SceneObject* up = parent >= 0 ? &out.objects[size_t(parent)] : nullptr;
       o.casts_shadows = flags.casts_shadows.value_or(up ? up->casts_shadows : true);
@@ -98,6 +99,14 @@ struct Builder {
           continue;
         }
         const Vec3 n(nd / len);
+        if (i < content->triangle_uvs.size()) {
+          std::array<Vec2, 3> uv = content->triangle_uvs[i];
+          if (!identity && mirrored) std::swap(uv[1], uv[2]);
+          out.triangles.uv.resize(out.triangles.size(), kNoTextureCoordinates);
+          out.triangles.uv.push_back(uv);
+        } else if (!out.triangles.uv.empty()) {
+          out.triangles.uv.push_back(kNoTextureCoordinates);
+        }
         out.triangles.corners.push_back(t);
         out.triangles.normal.push_back(n);
         out.triangles.area.push_back(area);

@@ -21,6 +21,9 @@ struct Triangles {
   std::vector<Vec3> normal;                  // unit, (b-a)x(c-a) normalised
   std::vector<float> area;
   std::vector<int32_t> object;  // the Pure that owns the triangle
+  /// Texture coordinates of a, b and c (scene/description.h's convention), or empty when no
+  /// triangle of the scene has any.
+  std::vector<std::array<Vec2, 3>> uv;
   size_t size() const { return corners.size(); }
   Vec3 centroid(size_t i) const {
     return (corners[i][0] + corners[i][1] + corners[i][2]) * (1.0f / 3.0f);
@@ -41,7 +44,8 @@ struct SceneObject {
   Aabb box;                     // of all triangles below
   uint32_t first_triangle = 0;  // triangles below this object: [first, first + count)
   uint32_t triangle_count = 0;
-  Material material;  // Pure only
+  Material material;        // Pure only
+  TextureMap base_texture;  // Pure only: see ObjectDescription::base_texture
   // The per-object flags of design §8, resolved: the object's own setting, else its nearest
   // ancestor's, else the default.
   bool casts_shadows = true;       // false: shadow rays pass through its triangles

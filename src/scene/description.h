@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 #include <glm/mat4x4.hpp>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "core/error.h"
 #include "core/math.h"
 #include "scene/light.h"
+#include "scene/texture.h"
 
 namespace rad {
 
@@ -20,6 +22,8 @@ const char* to_string(ObjectKind kind);
 
 /// A Pure's surface: reflectance = Reflectivity x Color, emission = Emission x Color, per
 /// channel (design §2). Emission is radiant exitance, in the same units as radiosity.
+/// A Pure with a base-colour texture (ObjectDescription::base_texture) reflects `reflectance`
+/// on average: its factor times the texture's mean colour.
 struct Material {
   Vec3 reflectance{0.0f};
   Vec3 emission{0.0f};
@@ -30,6 +34,12 @@ struct NamedObject {
   std::string name;
   SourceLoc loc;
 };
+
+/// The texture coordinates of a triangle that has none among triangles that have some (a
+/// textured face without them): its vertices reflect their texture's mean.
+inline const std::array<Vec2, 3> kNoTextureCoordinates = {
+    Vec2(std::numeric_limits<float>::quiet_NaN()), Vec2(std::numeric_limits<float>::quiet_NaN()),
+    Vec2(std::numeric_limits<float>::quiet_NaN())};
 
 /// The original's proposed per-object flags (design §8), as written; unset means "as the parent".
 /// They apply to the object and everything below it, the nearest setting winning.
@@ -64,10 +74,17 @@ struct ObjectDescription {
   // A copy of an earlier object (`Copy "name"`): its kind, contents and flags, placed by this
   // object's transform on top of the original's. Holds no children or triangles itself.
   int32_t copy_of = -1;
-  std::vector<int32_t> children;               // Assembly and Composite only
-  Material material;                           // Pure only
+  std::vector<int32_t> children;  // Assembly and Composite only
+  Material material;              // Pure only
+  /// Pure only: a model material's base-colour texture, or none. Each vertex then reflects the
+  /// material's reflectance scaled by the texture filtered over its element, over the
+  /// texture's mean (solver/texture_factors.h).
+  TextureMap base_texture;
   std::vector<std::array<Vec3, 3>> triangles;  // Pure only: corners a, b, c (front: (b-a)x(c-a))
   std::vector<SourceLoc> triangle_locs;        // Pure only: where each was written (or empty)
+  /// Pure only: texture coordinates of each triangle's corners (glTF convention: v down the
+  /// image), or empty when it has none.
+  std::vector<std::array<Vec2, 3>> triangle_uvs;
   /// Set for a Light object alone (`Object "lamp" Light { ... }`, or a model's light): the light
   /// in the object's own coordinates, placed by the transforms around it as a Pure's triangles
   /// are. Such an object has no children, triangles or material (its `kind` is Pure, unused);

@@ -1,7 +1,7 @@
 #include "scene/gltf_reader.h"
 
 // The implementation is Debian's libtinygltf (it decodes images with its own stb_image; rad
-// replaces that loader below, so every image is only ever reduced to its mean colour).
+// replaces that loader below with its own decoding into linear colour, scene/texture.h).
 #include <tiny_gltf.h>
 
 #include <cmath>
@@ -12,9 +12,10 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "scene/text_file.h"
-#include "scene/texture_mean.h"
+#include "scene/texture.h"
 
 namespace rad {
 
@@ -28,16 +29,20 @@ constexpr int kMaxDepth = 256;
 constexpr size_t kMaxPlacements = 10'000'000;  // node visits: a node may list one child twice
 
 struct Context {
-  std::string folder;                // external files only from here; "" refuses them
-  std::map<int, Vec3> texture_mean;  // image index -> mean linear colour
+  std::string folder;  // external files only from here; "" refuses them
+  std::string path;    // the file, to name its images
+  std::map<int, std::shared_ptr<const TextureImage>> images;  // by image index, decoded once
 };
 
 bool load_image(tinygltf::Image* image, const int index, std::string*, std::string* warn, int, int,
                 const unsigned char* bytes, int size, void* user) {
   auto* c = static_cast<Context*>(user);
   if (size > 0) {
-    if (const std::optional<Vec3> m = mean_texture_colour(bytes, size_t(size))) {
-      c->texture_mean[index] = *m;
+    const std::string name = !image->uri.empty() && image->uri.compare(0, 5, "data:") != 0
+                                 ? image->uri
+                                 : "image " + std::to_string(index) + " of " + c->path;
+    if (std::shared_ptr<const TextureImage> t = decode_texture(bytes, size_t(size), name)) {
+      c->images[index] = std::move(t);
     } else if (warn) {
       *warn +=
           "image " + std::to_string(index) + " cannot be decoded; its material uses its factor\n";
@@ -156,14 +161,63 @@ glm::dmat4 local_transform(const tinygltf::Node& n) {
   return m;
 }
 
+// Which texture coordinates a material's base texture reads, and the KHR_texture_transform
+// that maps them (u' = offset + R(rotation) S(scale) u, the extension's matrix).
+struct TextureCoordinates {
+  int set = 0;                                   // TEXCOORD_<set>
+  double matrix[2][3] = {{1, 0, 0}, {0, 1, 0}};  // rows: u' and v' of (u, v, 1)
+  Vec2 apply(double u, double v) const {
+    return Vec2(float(matrix[0][0] * u + matrix[0][1] * v + matrix[0][2]),
+                float(matrix[1][0] * u + matrix[1][1] * v + matrix[1][2]));
+  }
+};
+
+TextureCoordinates coordinates_of(int tex_coord, const tinygltf::ExtensionMap& extensions) {
+  TextureCoordinates c;
+  c.set = tex_coord;
+  const auto ext = extensions.find("KHR_texture_transform");
+  if (ext == extensions.end() || !ext->second.IsObject()) return c;
+  const tinygltf::Value& x = ext->second;
+  auto number = [](const tinygltf::Value& v, double fallback) {
+    const double d = v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+    return std::isfinite(d) ? d : fallback;
+  };
+  double offset[2] = {0, 0}, scale[2] = {1, 1};
+  for (int k = 0; k < 2; ++k) {
+    if (x.Get("offset").IsArray() && x.Get("offset").ArrayLen() == 2)
+      offset[k] = number(x.Get("offset").Get(k), 0.0);
+    if (x.Get("scale").IsArray() && x.Get("scale").ArrayLen() == 2)
+      scale[k] = number(x.Get("scale").Get(k), 1.0);
+  }
+  const double r = number(x.Get("rotation"), 0.0), cs = std::cos(r), sn = std::sin(r);
+  c.matrix[0][0] = cs * scale[0], c.matrix[0][1] = sn * scale[1], c.matrix[0][2] = offset[0];
+  c.matrix[1][0] = -sn * scale[0], c.matrix[1][1] = cs * scale[1], c.matrix[1][2] = offset[1];
+  if (x.Get("texCoord").IsNumber()) c.set = x.Get("texCoord").GetNumberAsInt();
+  return c;
+}
+
+TextureWrap wrap_of(int gl) {
+  switch (gl) {
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE:
+      return TextureWrap::ClampToEdge;
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT:
+      return TextureWrap::MirroredRepeat;
+    default:
+      return TextureWrap::Repeat;
+  }
+}
+
 ModelMaterial material_of(const tinygltf::Material& g, const Context& c, const tinygltf::Model& m,
-                          const std::string& path, TextureCounts& textures) {
+                          const std::string& path, TextureCounts& textures,
+                          TextureCoordinates& coordinates) {
   ModelMaterial mat;
   mat.name = g.name.empty() ? "material" : g.name;
   mat.loc = SourceLoc{path};
   const auto& f = g.pbrMetallicRoughness.baseColorFactor;
   if (f.size() >= 3) mat.reflectance = Vec3(float(f[0]), float(f[1]), float(f[2]));
   int t = g.pbrMetallicRoughness.baseColorTexture.index;
+  coordinates = coordinates_of(g.pbrMetallicRoughness.baseColorTexture.texCoord,
+                               g.pbrMetallicRoughness.baseColorTexture.extensions);
   // Older exporters write the specular-glossiness model instead; its diffuse colour is what
   // reflects diffusely, and readers that know the extension take it over the base colour.
   const auto sg = g.extensions.find("KHR_materials_pbrSpecularGlossiness");
@@ -176,11 +230,25 @@ ModelMaterial material_of(const tinygltf::Material& g, const Context& c, const t
     }
     const tinygltf::Value& dt = sg->second.Get("diffuseTexture");
     t = dt.IsObject() && dt.Get("index").IsNumber() ? dt.Get("index").GetNumberAsInt() : -1;
+    coordinates = coordinates_of(
+        dt.IsObject() && dt.Get("texCoord").IsNumber() ? dt.Get("texCoord").GetNumberAsInt() : 0,
+        dt.IsObject() && dt.Get("extensions").IsObject()
+            ? tinygltf::ExtensionMap{{"KHR_texture_transform",
+                                      dt.Get("extensions").Get("KHR_texture_transform")}}
+            : tinygltf::ExtensionMap{});
   }
   if (t >= 0 && size_t(t) < m.textures.size()) {
-    const auto it = c.texture_mean.find(m.textures[size_t(t)].source);
-    if (it != c.texture_mean.end()) {
-      mat.reflectance *= it->second;
+    const tinygltf::Texture& texture = m.textures[size_t(t)];
+    const auto it = c.images.find(texture.source);
+    if (it != c.images.end()) {
+      mat.reflectance *= it->second->mean;
+      mat.base_texture.image = it->second;
+      if (texture.sampler >= 0 && size_t(texture.sampler) < m.samplers.size()) {
+        const tinygltf::Sampler& s = m.samplers[size_t(texture.sampler)];
+        mat.base_texture.sampler.wrap_s = wrap_of(s.wrapS);
+        mat.base_texture.sampler.wrap_t = wrap_of(s.wrapT);
+        mat.base_texture.sampler.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+      }
       ++textures.read;
     } else {
       ++textures.unread;
@@ -324,7 +392,7 @@ Light light_of(const tinygltf::Light& gl, int index, const std::string& node_nam
 }  // namespace
 
 Model parse_gltf(std::string_view bytes, const std::string& path, const std::string& folder) {
-  Context c{folder, {}};
+  Context c{folder, path, {}};
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(load_image, &c);
   loader.SetFsCallbacks({file_exists, expand_path, read_whole_file, write_whole_file, &c});
@@ -357,8 +425,9 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
 
   Model m;
   m.path = path;
-  for (const tinygltf::Material& mat : g.materials)
-    m.materials.push_back(material_of(mat, c, g, path, m.textures));
+  std::vector<TextureCoordinates> coordinates(g.materials.size());
+  for (size_t k = 0; k < g.materials.size(); ++k)
+    m.materials.push_back(material_of(g.materials[k], c, g, path, m.textures, coordinates[k]));
   const uint32_t fallback = uint32_t(m.materials.size());
   bool fallback_used = false;
   size_t skipped = 0, total = 0;
@@ -456,12 +525,46 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
       const bool known = p.material >= 0 && size_t(p.material) < m.materials.size();
       fallback_used |= !known;
       const uint32_t material = known ? uint32_t(p.material) : fallback;
+      // The base texture's coordinates, when the material has a texture and they are there.
+      std::optional<View> uvs;
+      const TextureCoordinates* uv_map = nullptr;
+      if (known && m.materials[material].base_texture) {
+        uv_map = &coordinates[material];
+        const auto a = p.attributes.find("TEXCOORD_" + std::to_string(uv_map->set));
+        if (a != p.attributes.end()) {
+          uvs = view(g, a->second, path, "TEXCOORD");
+          if (uvs->components != 2 || uvs->count < positions.count ||
+              (uvs->component != TINYGLTF_COMPONENT_TYPE_FLOAT &&
+               uvs->component != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+               uvs->component != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)) {
+            fail(path, "TEXCOORD_" + std::to_string(uv_map->set) + " of mesh '" + mesh.name +
+                           "' must be VEC2 (float, or normalized unsigned byte or short), one "
+                           "per vertex");
+          }
+        }
+      }
+      const double uv_unit = !uvs                                                       ? 1.0
+                             : uvs->component == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE  ? 255.0
+                             : uvs->component == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 65535.0
+                                                                                        : 1.0;
+      auto uv = [&](uint32_t i) {
+        return uv_map->apply(component(*uvs, i, 0) / uv_unit, component(*uvs, i, 1) / uv_unit);
+      };
       auto emit = [&](uint32_t a, uint32_t b, uint32_t d) {
         std::array<Vec3, 3> t{corner(a), corner(b), corner(d)};
         if (mirrored) std::swap(t[1], t[2]);  // a mirroring transform turns the front over
         for (const Vec3& v : t) {
           if (!glm::all(glm::lessThan(glm::abs(v), Vec3(3e38f))))
             fail(path, "a vertex is not finite after its transform");
+        }
+        if (uvs) {
+          std::array<Vec2, 3> w{uv(a), uv(b), uv(d)};
+          if (mirrored) std::swap(w[1], w[2]);
+          // The group's coordinates are one per triangle or none.
+          group.triangle_uvs.resize(group.triangles.size(), kNoTextureCoordinates);
+          group.triangle_uvs.push_back(w);
+        } else if (!group.triangle_uvs.empty()) {
+          group.triangle_uvs.push_back(kNoTextureCoordinates);
         }
         group.triangles.push_back(t);
         group.material.push_back(material);
@@ -485,7 +588,8 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
     }
     if (!group.triangles.empty()) m.groups.push_back(std::move(group));
   }
-  if (fallback_used) m.materials.push_back({"default", Vec3(0.8f), Vec3(0.0f), SourceLoc{path}});
+  if (fallback_used)
+    m.materials.push_back({"default", Vec3(0.8f), Vec3(0.0f), {}, SourceLoc{path}});
   if (m.groups.empty()) {
     if (skipped > 0) {
       fail(path,

@@ -16,9 +16,10 @@ namespace rad {
 
 struct ModelMaterial {
   std::string name;
-  Vec3 reflectance{0.8f};  // diffuse colour (OBJ Kd), times the texture's mean colour
-  Vec3 emission{0.0f};     // OBJ Ke
-  SourceLoc loc;           // where it was defined
+  Vec3 reflectance{0.8f};   // diffuse colour (OBJ Kd), times the texture's mean colour
+  Vec3 emission{0.0f};      // OBJ Ke
+  TextureMap base_texture;  // OBJ map_Kd, glTF baseColorTexture (empty: none read)
+  SourceLoc loc;            // where it was defined
 };
 
 /// A named part of the model (OBJ `o`/`g`): triangles, each with its material.
@@ -29,6 +30,9 @@ struct ModelGroup {
   // The face each triangle came from, or empty when the format gives no more than the file (a
   // located string per triangle was half of a million-triangle model's import time).
   std::vector<SourceLoc> triangle_locs;
+  /// Per triangle, its corners' texture coordinates (v down the image, as glTF), or empty when
+  /// no triangle of the group has any.
+  std::vector<std::array<Vec2, 3>> triangle_uvs;
 };
 
 struct Model {

@@ -98,6 +98,7 @@ SceneDescription model_to_scene(Model m, const ModelOptions& o) {
         p.kind = ObjectKind::Pure;
         p.loc = m.materials[k].loc;
         p.material = materials[k];
+        p.base_texture = m.materials[k].base_texture;
         emits |= max_component(p.material.emission) > 0.0f;
         d.objects[size_t(composite)].children.push_back(pure_of[k]);
         d.objects.push_back(std::move(p));
@@ -108,10 +109,15 @@ SceneDescription model_to_scene(Model m, const ModelOptions& o) {
           std::all_of(g.material.begin(), g.material.end(), [&](uint32_t x) { return x == k; })) {
         p.triangles = std::move(g.triangles);
         p.triangle_locs = std::move(g.triangle_locs);
+        p.triangle_uvs = std::move(g.triangle_uvs);
         break;
       }
       p.triangles.push_back(g.triangles[t]);
       if (!g.triangle_locs.empty()) p.triangle_locs.push_back(g.triangle_locs[t]);
+      if (!g.triangle_uvs.empty()) {
+        p.triangle_uvs.resize(p.triangles.size() - 1, kNoTextureCoordinates);
+        p.triangle_uvs.push_back(g.triangle_uvs[t]);
+      }
     }
   }
   // The model's lights (glTF KHR_lights_punctual), each a Light object of the model's Assembly.

@@ -15,7 +15,7 @@
 #include <sstream>
 
 #include "scene/text_file.h"
-#include "scene/texture_mean.h"
+#include "scene/texture.h"
 
 namespace rad {
 
@@ -217,6 +217,8 @@ Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& p
   m.path = path;
   // Materials by texture they could not read: one warning per texture, not per material.
   std::map<std::string, std::string> unread;
+  // Each image file decoded once, however many materials name it.
+  std::map<std::string, std::shared_ptr<const TextureImage>> decoded;
   for (const tinyobj::material_t& t : reader.GetMaterials()) {
     ModelMaterial mat;
     mat.name = t.name;
@@ -227,9 +229,19 @@ Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& p
       const auto own = material_folders.find(t.name);
       const std::string& folder = own != material_folders.end() ? own->second : texture_folder;
       const std::optional<std::string> file = find_texture(folder, t.diffuse_texname);
-      const std::optional<Vec3> mean = file ? mean_texture_colour(*file) : std::nullopt;
-      if (mean) {
-        mat.reflectance *= *mean;
+      std::shared_ptr<const TextureImage> image;
+      if (file) {
+        const auto [it, made] = decoded.try_emplace(*file);
+        if (made) it->second = read_texture_file(*file);
+        image = it->second;
+      }
+      if (image) {
+        mat.reflectance *= image->mean;
+        mat.base_texture.image = image;
+        if (t.diffuse_texopt.clamp) {  // map_Kd -clamp on
+          mat.base_texture.sampler.wrap_s = mat.base_texture.sampler.wrap_t =
+              TextureWrap::ClampToEdge;
+        }
         ++m.textures.read;
       } else {
         ++m.textures.unread;
@@ -256,6 +268,8 @@ Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& p
   }
   const uint32_t fallback = uint32_t(m.materials.size());
   bool fallback_used = false;
+  const size_t nt = attrib.texcoords.size() / 2;
+  size_t uvless_faces = 0, uvless_material = 0;  // textured faces without vt, the first's
 
   for (const tinyobj::shape_t& shape : reader.GetShapes()) {
     ModelGroup g;
@@ -268,6 +282,8 @@ Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& p
       const size_t n = mesh.num_face_vertices[f];
       if (at + n > mesh.indices.size()) throw Error(SourceLoc{path}, "truncated face list");
       std::array<Vec3, 3> tri;
+      std::array<Vec2, 3> uv{};
+      bool has_uv = true;
       bool ok = n == 3;
       for (size_t k = 0; k < 3 && ok; ++k) {
         const int v = mesh.indices[at + k].vertex_index;
@@ -279,18 +295,42 @@ Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& p
         tri[k] =
             Vec3(float(attrib.vertices[3 * size_t(v)]), float(attrib.vertices[3 * size_t(v) + 1]),
                  float(attrib.vertices[3 * size_t(v) + 2]));
+        // OBJ's v runs up the image, glTF's (rad's) down it.
+        const int vt = mesh.indices[at + k].texcoord_index;
+        if (vt >= 0 && size_t(vt) < nt) {
+          uv[k] =
+              Vec2(attrib.texcoords[2 * size_t(vt)], 1.0f - attrib.texcoords[2 * size_t(vt) + 1]);
+        } else {
+          has_uv = false;
+        }
       }
       at += n;
       if (!ok) continue;  // triangulated: only degenerate faces (fewer than 3) remain
       const int id = f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
       const bool known = id >= 0 && size_t(id) < m.materials.size();
       fallback_used |= !known;
+      // Coordinates matter only under a texture; the group's are one per triangle or none.
+      const bool textured = known && m.materials[size_t(id)].base_texture;
+      if (textured && !has_uv && uvless_faces++ == 0) uvless_material = size_t(id);
+      if (textured) {
+        g.triangle_uvs.resize(g.triangles.size(), kNoTextureCoordinates);
+        g.triangle_uvs.push_back(has_uv ? uv : kNoTextureCoordinates);
+      } else if (!g.triangle_uvs.empty()) {
+        g.triangle_uvs.push_back(kNoTextureCoordinates);
+      }
       g.triangles.push_back(tri);
       g.material.push_back(known ? uint32_t(id) : fallback);
     }
     if (!g.triangles.empty()) m.groups.push_back(std::move(g));
   }
-  if (fallback_used) m.materials.push_back({"default", Vec3(0.8f), Vec3(0.0f), SourceLoc{path}});
+  if (uvless_faces > 0) {
+    warn(SourceLoc{path}, std::to_string(uvless_faces) + " faces of textured material '" +
+                              m.materials[uvless_material].name +
+                              "' (the first) have no texture coordinates (vt): they reflect "
+                              "the texture's mean colour");
+  }
+  if (fallback_used)
+    m.materials.push_back({"default", Vec3(0.8f), Vec3(0.0f), {}, SourceLoc{path}});
   // What the model loses, once per kind at its first line; a model of nothing else is refused.
   std::string lost;
   for (const Dropped& d : dropped) {

@@ -17,11 +17,12 @@ using MaterialFolders = std::map<std::string, std::string>;
 /// libraries (concatenated). Polygons are fan-split; `o` and `g` start groups; faces take the
 /// material of the last `usemtl` (or the default, grey 0.8). Kd is the reflectance, Ke the
 /// emission; a map_Kd texture (found by find_texture from the material's folder in
-/// `material_folders`, else `texture_folder`) multiplies Kd by its mean colour when
-/// `texture_folder` is not empty and the image can be read (stb_image); one warning per texture
-/// that cannot. Points, lines and free-form curves and surfaces are dropped with one warning per
-/// kind. Throws rad::Error at path:line for malformed input, non-finite coordinates and bad
-/// indices, and at path when no face is left.
+/// `material_folders`, else `texture_folder`, each file decoded once) becomes the material's
+/// base texture, read through the faces' `vt` coordinates, when `texture_folder` is not empty
+/// and the image can be read (stb_image); one warning per texture that cannot. Points, lines and
+/// free-form curves and surfaces are dropped with one warning per kind. Throws rad::Error at
+/// path:line for malformed input, non-finite coordinates and bad indices, and at path when no face
+/// is left.
 Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& path,
                      const std::string& texture_folder = "",
                      const MaterialFolders& material_folders = {});

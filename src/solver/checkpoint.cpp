@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/fingerprint.h"
 #include "solver/state_codec.h"
+#include "solver/texture_factors.h"
 
 namespace rad {
 
@@ -20,9 +21,8 @@ namespace {
 // Layout: magic, format, fingerprint, payload size, payload checksum, payload. Native byte
 // order and float layout: a checkpoint resumes on the machine kind that wrote it.
 constexpr char kMagic[8] = {'R', 'A', 'D', 'C', 'K', 'P', 'T', '\n'};
-// 2: vertices shared by copy; 3: kept shadow-ray answers counted; 4: vertex states apart from
-// the positions
-constexpr uint32_t kFormat = 8;
+// The payload's layout version: a checkpoint of another layout is refused.
+constexpr uint32_t kFormat = 9;
 constexpr size_t kHeader = sizeof kMagic + sizeof(uint32_t) + 3 * sizeof(uint64_t);
 
 struct HistoryRecord {
@@ -43,10 +43,20 @@ uint64_t solve_fingerprint(const Hierarchy& h, const SolverOptions& o, BackendKi
   f.add(kFormat).add(uint64_t(h.triangles.size()));
   for (size_t t = 0; t < h.triangles.size(); ++t) {
     f.add(h.triangles.corners[t]).add(h.triangles.object[t]);
+    if (!h.triangles.uv.empty()) f.add(h.triangles.uv[t]);
   }
   for (const SceneObject& ob : h.objects) {
     f.add(ob.kind).add(ob.parent).add(ob.first_triangle).add(ob.triangle_count);
     f.add(ob.material.reflectance).add(ob.material.emission);
+    // A texture by its name, size and mean: another image is another solve.
+    f.add(bool(ob.base_texture));
+    if (const TextureMap& t = ob.base_texture) {
+      f.add(std::string_view(t.image->name))
+          .add(t.image->file_width)
+          .add(t.image->file_height)
+          .add(t.image->mean);
+      f.add(t.sampler.wrap_s).add(t.sampler.wrap_t).add(t.sampler.nearest);
+    }
     f.add(ob.casts_shadows).add(ob.receives_shadows).add(ob.influence).add(uint64_t(ob.lit.size()));
     for (const TriangleRange& r : ob.lit) f.add(r.first).add(r.count);
   }
@@ -79,7 +89,7 @@ void write_checkpoint(const std::string& path, const SolverState& s, uint64_t fi
   w.pod(uint64_t(s.solution.mesh.polygons.size()));
   for (size_t p = 0; p < s.solution.mesh.polygons.size(); ++p)
     write_polygon(w, s.solution.mesh.polygons[p], s.solution.vertex_states[p],
-                  s.scene.shared.copies[p]);
+                  s.solution.texture_factors[p], s.scene.shared.copies[p]);
   w.vec(s.solution.materials);
   w.vec(s.energy.unshot_energy);
   w.pod(s.energy.emitted_energy), w.pod(s.energy.absorbed_energy), w.pod(s.shots.count),
@@ -144,7 +154,11 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   mesh.polygons.resize(np);
   std::vector<std::vector<VertexState>> states(np);
   std::vector<std::vector<VertexCopy>> copies(np);
-  for (size_t p = 0; p < np; ++p) read_polygon(r, mesh.polygons[p], states[p], copies[p], np);
+  std::vector<std::vector<Vec3>> factors(np);
+  for (size_t p = 0; p < np; ++p) {
+    read_polygon(r, mesh.polygons[p], states[p], factors[p], copies[p], np,
+                 is_textured(s.solution.hierarchy->triangles, p, s.solution.texture_of(p)));
+  }
   // A copy's source gathers: it is a vertex, and no copy itself (a chain would have the shot
   // read a gain while another thread writes it).
   SharedVertices shared;
@@ -195,6 +209,7 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   for (size_t p = 0; p < np; ++p) initial[p] = uint32_t(s.solution.mesh.polygons[p].vertex_count());
   s.solution.mesh = std::move(mesh);
   s.solution.vertex_states = std::move(states);
+  s.solution.texture_factors = std::move(factors);
   s.scene.shared.copies = std::move(shared.copies);
   find_edge_midpoints(s.scene.shared, s.solution.mesh, s.solution.hierarchy->triangles,
                       s.scene.clusters, initial);

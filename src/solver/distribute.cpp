@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "solver/state_codec.h"
+#include "solver/texture_factors.h"
 
 namespace rad {
 
@@ -79,7 +80,7 @@ std::vector<RankReport> collect(SolverState& s) {
       if (!s.ownership.owns(p)) continue;
       w.pod(uint32_t(p));
       write_polygon(w, s.solution.mesh.polygons[p], s.solution.vertex_states[p],
-                    s.scene.shared.copies[p]);
+                    s.solution.texture_factors[p], s.scene.shared.copies[p]);
       w.pod(s.energy.unshot_energy[p]);
     }
   }
@@ -97,7 +98,9 @@ std::vector<RankReport> collect(SolverState& s) {
           s.ownership.cluster_owner[s.scene.clusters.cluster_of[p]] != uint32_t(r))
         in.fail(fmt::format("polygon {} is not the rank's", p));
       read_polygon(in, s.solution.mesh.polygons[p], s.solution.vertex_states[p],
-                   s.scene.shared.copies[p], s.solution.mesh.polygons.size());
+                   s.solution.texture_factors[p], s.scene.shared.copies[p],
+                   s.solution.mesh.polygons.size(),
+                   is_textured(s.solution.hierarchy->triangles, p, s.solution.texture_of(p)));
       s.energy.unshot_energy[p] = in.pod<UnshotEnergy>();
       ++received[size_t(r)];
     }

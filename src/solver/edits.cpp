@@ -3,10 +3,14 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <limits>
+
 #include "mesh/subdivide.h"
 #include "solver/refine.h"
 #include "solver/shoot.h"
 #include "solver/solver.h"
+#include "solver/texture_factors.h"
 
 namespace rad {
 
@@ -25,9 +29,14 @@ void set_material(SolverState& s, int32_t object, const Material& m, const Visib
   const SceneObject& o = h.objects[size_t(object)];
   const Material old = s.solution.materials[size_t(object)];
   const Vec3 d_e = m.emission - old.emission, d_rho = m.reflectance - old.reflectance;
+  // A texture stays: its factors scale the new reflectance.
   s.solution.materials[size_t(object)] = m;
   for (uint32_t t = o.first_triangle; t < o.first_triangle + o.triangle_count; ++t) {
-    for (VertexState& v : s.solution.vertex_states[t]) v.unshot += d_e + d_rho * v.irradiance;
+    std::vector<VertexState>& vs = s.solution.vertex_states[t];
+    const std::vector<Vec3>& factors = s.solution.texture_factors[t];
+    for (size_t v = 0; v < vs.size(); ++v) {
+      vs[v].unshot += d_e + (factors.empty() ? d_rho : d_rho * factors[v]) * vs[v].irradiance;
+    }
     s.energy.emitted_energy += double(h.triangles.area[t]) * double(mean_component(d_e));
     s.energy.unshot_energy[t] = polygon_unshot_energy(s.solution, t);
   }
@@ -63,6 +72,23 @@ size_t force_subdivide(SolverState& s, int32_t polygon, const VisibilityBackend&
     ++s.stats.subdivisions;
   }
   vs.resize(m.vertex_count());
+  std::vector<Vec3>& factors = s.solution.texture_factors[size_t(polygon)];
+  if (!factors.empty()) {
+    factors.resize(m.vertex_count());
+    const Triangles& tris = s.solution.hierarchy->triangles;
+    const TextureMap& texture = s.solution.texture_of(size_t(polygon));
+    // Each new vertex stands for the smallest leaf it is a corner of.
+    std::vector<float> area(m.vertex_count() - made_before, std::numeric_limits<float>::max());
+    for_each_leaf(m, [&](uint32_t e) {
+      for (const uint32_t v : m.elements[e].v)
+        if (v >= made_before)
+          area[v - made_before] = std::min(area[v - made_before], m.elements[e].area);
+    });
+    for (uint32_t v = made_before; v < m.vertex_count(); ++v) {
+      factors[v] =
+          texture_factor(tris, size_t(polygon), texture, m.positions[v], area[v - made_before]);
+    }
+  }
   if (s.scene.buried.found && s.options.shadows) {
     find_buried_vertices(s.solution.hierarchy->triangles, size_t(polygon), m, made_before, vis,
                          buried_probe(s.scene), s.scene.buried.moved[size_t(polygon)],

@@ -7,10 +7,19 @@
 
 #include "mesh/subdivide.h"
 #include "solver/shoot.h"
+#include "solver/texture_factors.h"
 
 namespace rad {
 
 namespace {
+
+// Unshot radiosity interpolated to a midpoint of a textured polygon: the ends' mean `unshot`
+// was reflected by the ends' mean texture factor `ends`; the midpoint reflects by its own.
+Vec3 to_reflectance(const Vec3& unshot, const Vec3& ends, const Vec3& own) {
+  Vec3 u = unshot;
+  for (int k = 0; k < 3; ++k) u[k] = ends[k] > 0.0f ? unshot[k] * own[k] / ends[k] : 0.0f;
+  return u;
+}
 
 struct ExactVertex {
   uint32_t polygon, vertex, a, b;
@@ -30,10 +39,10 @@ struct EdgeMidpoint {
 // radiosities differ by more than `limit`, or it crosses into a solid (some of its vertices
 // buried, some not: its light to shoot falls to nothing across it, buried_vertices.h), and it
 // is still at least `min_split_size`. Which of its edges differ: in *d (01, 12, 20).
-bool needs_split(const PolygonMesh& m, const std::vector<VertexState>& vs, const Material& mat,
-                 const BuriedVertices& buried, size_t p, uint32_t e, float limit,
+bool needs_split(const Solution& s, const BuriedVertices& buried, size_t p, uint32_t e, float limit,
                  float min_split_size, std::array<bool, 3>* d) {
-  auto B = [&](uint32_t v) { return mat.emission + mat.reflectance * vs[v].irradiance; };
+  const PolygonMesh& m = s.mesh.polygons[p];
+  auto B = [&](uint32_t v) { return s.radiosity(p, v); };
   const Element& el = m.elements[e];
   const Vec3 b0 = B(el.v[0]), b1 = B(el.v[1]), b2 = B(el.v[2]);
   const bool in0 = buried.is_moved(p, el.v[0]), in1 = buried.is_moved(p, el.v[1]),
@@ -47,13 +56,11 @@ bool needs_split(const PolygonMesh& m, const std::vector<VertexState>& vs, const
 
 bool needs_refinement(const SolverState& s, uint32_t p) {
   const PolygonMesh& m = s.solution.mesh.polygons[p];
-  const std::vector<VertexState>& vs = s.solution.vertex_states[p];
-  const Material& mat = s.solution.material_of(p);
   const float limit = s.options.subdivision_threshold * s.energy.radiosity_scale;
   bool any = false;
   std::array<bool, 3> d;
   for_each_leaf(m, [&](uint32_t e) {
-    any = any || needs_split(m, vs, mat, s.scene.buried, p, e, limit, 2.0f * s.scene.min_size, &d);
+    any = any || needs_split(s.solution, s.scene.buried, p, e, limit, 2.0f * s.scene.min_size, &d);
   });
   return any;
 }
@@ -129,17 +136,25 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
         const bool sharing = shares_vertices(s.scene.clusters, p);
         PolygonMesh& m = s.solution.mesh.polygons[p];
         std::vector<VertexState>& vs = s.solution.vertex_states[p];
-        const Material& mat = s.solution.material_of(p);
+        std::vector<Vec3>& factors = s.solution.texture_factors[p];
         auto consider = [&](uint32_t e) {
           const uint32_t v[3] = {m.elements[e].v[0], m.elements[e].v[1], m.elements[e].v[2]};
           std::array<bool, 3> d;
-          if (!needs_split(m, vs, mat, s.scene.buried, p, e, limit, min_split_size, &d)) return;
+          if (!needs_split(s.solution, s.scene.buried, p, e, limit, min_split_size, &d)) return;
           const bool d01 = d[0], d12 = d[1], d20 = d[2];
           const bool exact_edge[3][3] = {{false, d01, d20}, {d01, false, d12}, {d20, d12, false}};
           auto index_of = [&](uint32_t x) { return x == v[0] ? 0 : x == v[1] ? 1 : 2; };
           NewMidpoint created[3];
           const int n = split_element(m, e, created);
           vs.resize(m.vertex_count());
+          if (!factors.empty()) {
+            factors.resize(m.vertex_count());
+            for (int k = 0; k < n; ++k) {
+              factors[created[k].vertex] =
+                  texture_factor(tris, p, s.solution.texture_of(p), m.positions[created[k].vertex],
+                                 m.elements[size_t(m.elements[e].first_child)].area);
+            }
+          }
           ++splits[i];
           for (int k = 0; k < n; ++k) {
             const NewMidpoint& c = created[k];
@@ -154,6 +169,10 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
               VertexState& mid = vs[c.vertex];
               mid.irradiance = (a.irradiance + b.irradiance) * 0.5f;
               mid.unshot = (a.unshot + b.unshot) * 0.5f;
+              if (!factors.empty()) {
+                mid.unshot = to_reflectance(mid.unshot, (factors[c.a] + factors[c.b]) * 0.5f,
+                                            factors[c.vertex]);
+              }
               mid.last_gain = (a.last_gain + b.last_gain) * 0.5f;
               mid.major = (a.major + b.major) * 0.5f;
               ++interpolated[i];
@@ -242,7 +261,9 @@ void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBa
     const Vec3 at = s.scene.buried.gather_point(
         x.polygon, x.vertex, s.solution.mesh.polygons[x.polygon].positions[x.vertex]);
     std::vector<VertexState>& vs = s.solution.vertex_states[x.polygon];
-    const Vec3 rho = s.solution.material_of(x.polygon).reflectance;
+    const Vec3 rho = s.solution.reflectance(x.polygon, x.vertex);
+    const Vec3 rho_a = s.solution.reflectance(x.polygon, x.a);
+    const Vec3 rho_b = s.solution.reflectance(x.polygon, x.b);
     const VertexState &a = vs[x.a], &b = vs[x.b];
     VertexState& mid = vs[x.vertex];
     const Vec3 dh = gather_from_source(at, tris.normal[x.polygon], tris.centroid(x.polygon), src,
@@ -259,10 +280,14 @@ void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBa
     const Vec3 earlier_h = (minor_a + minor_b) * 0.5f + major_h;
     // A buried vertex's unshot radiosity holds none of its gains (buried_vertices.h).
     const Vec3 a_u =
-        s.scene.buried.is_moved(x.polygon, x.a) ? a.unshot : a.unshot - rho * a.last_gain;
+        s.scene.buried.is_moved(x.polygon, x.a) ? a.unshot : a.unshot - rho_a * a.last_gain;
     const Vec3 b_u =
-        s.scene.buried.is_moved(x.polygon, x.b) ? b.unshot : b.unshot - rho * b.last_gain;
-    const Vec3 earlier_u = (a_u + b_u) * 0.5f;
+        s.scene.buried.is_moved(x.polygon, x.b) ? b.unshot : b.unshot - rho_b * b.last_gain;
+    const std::vector<Vec3>& factors = s.solution.texture_factors[x.polygon];
+    const Vec3 earlier_u =
+        factors.empty() ? (a_u + b_u) * 0.5f
+                        : to_reflectance((a_u + b_u) * 0.5f, (factors[x.a] + factors[x.b]) * 0.5f,
+                                         factors[x.vertex]);
     const bool buried = s.scene.buried.is_moved(x.polygon, x.vertex);
     mid.irradiance = earlier_h + dh;
     mid.unshot = buried ? earlier_u : earlier_u + rho * dh;
@@ -284,8 +309,13 @@ void refine_after_edit(SolverState& s, const Vec3& d_rho, const VisibilityBacken
                x.polygon, x.vertex, s.solution.mesh.polygons[x.polygon].positions[x.vertex]);
            mid.irradiance = regather_shots(s, at, x.polygon, false, vis, settings, sc, &mid.major);
            // Unshot: the edit's part d_rho * H exact, the rest interpolated (transient).
-           mid.unshot = (a.unshot - d_rho * a.irradiance + b.unshot - d_rho * b.irradiance) * 0.5f;
-           if (!s.scene.buried.is_moved(x.polygon, x.vertex)) mid.unshot += d_rho * mid.irradiance;
+           const std::vector<Vec3>& f = s.solution.texture_factors[x.polygon];
+           auto d_rho_at = [&](uint32_t v) { return f.empty() ? d_rho : d_rho * f[v]; };
+           mid.unshot =
+               (a.unshot - d_rho_at(x.a) * a.irradiance + b.unshot - d_rho_at(x.b) * b.irradiance) *
+               0.5f;
+           if (!s.scene.buried.is_moved(x.polygon, x.vertex))
+             mid.unshot += d_rho_at(x.vertex) * mid.irradiance;
            mid.last_gain = Vec3(0.0f);
          });
 }

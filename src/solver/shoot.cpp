@@ -120,6 +120,7 @@ const Receivers& shoot_to_receivers(SolverState& s, const ShotSource& src,
       std::vector<VertexState>& vs = s.solution.vertex_states[p];
       const Vec3 n = tris.normal[p], centroid = tris.centroid(p);
       const Vec3 rho = s.solution.material_of(p).reflectance;
+      const std::vector<Vec3>& factors = s.solution.texture_factors[p];
       const GatherSettings own = receiver_settings(settings, s, p);
       // A shared vertex is skipped when the one that gathers for it is in a received polygon.
       const std::vector<VertexCopy>& copies = shared.copies[p];
@@ -134,21 +135,22 @@ const Receivers& shoot_to_receivers(SolverState& s, const ShotSource& src,
         const Vec3 at = s.scene.buried.gather_point(p, v, mesh.positions[v]);
         const Vec3 dh =
             gather_from_source(at, n, centroid, src, vis, own, sc, kept ? &rays : nullptr);
-        x.receive(dh, rho, major, at == mesh.positions[v]);
+        x.receive(dh, factors.empty() ? rho : rho * factors[v], major, at == mesh.positions[v]);
       }
     }
   });
-  // The shared vertices take the gain of the one that gathered for them (same Pure: same rho).
+  // The shared vertices take the gain of the one that gathered for them, and reflect it by
+  // their own reflectance (the same Pure's, but each polygon's texture coordinates).
   tbb::parallel_for(size_t(0), receivers.size(), [&](size_t i) {
     const uint32_t p = receivers[i];
     std::vector<VertexState>& vs = s.solution.vertex_states[p];
-    const Vec3 rho = s.solution.material_of(p).reflectance;
     for (const VertexCopy& c : shared.copies[p]) {
       if (!received[c.from_polygon]) continue;
       const Vec3 dh = s.solution.vertex_states[c.from_polygon][c.from_vertex].last_gain;
       // Whether it shoots is the copy's own (each polygon probes toward its own centroid, so a
       // shared vertex may be buried for one and not the other): what refinement reads back.
-      vs[c.vertex].receive(dh, rho, major, !s.scene.buried.is_moved(p, c.vertex));
+      vs[c.vertex].receive(dh, s.solution.reflectance(p, c.vertex), major,
+                           !s.scene.buried.is_moved(p, c.vertex));
     }
   });
   return s.receivers;

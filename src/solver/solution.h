@@ -38,14 +38,24 @@ struct Solution {
   std::vector<std::vector<VertexState>> vertex_states;
   /// Materials per hierarchy object (copied so they can be edited between shots).
   std::vector<Material> materials;
+  /// Per polygon that reflects by a texture, per vertex: its texture factor
+  /// (solver/texture_factors.h), fixed when the vertex is made; empty for other polygons.
+  std::vector<std::vector<Vec3>> texture_factors;
 
   const Material& material_of(size_t polygon) const {
     return materials[size_t(hierarchy->triangles.object[polygon])];
   }
+  const TextureMap& texture_of(size_t polygon) const {
+    return hierarchy->objects[size_t(hierarchy->triangles.object[polygon])].base_texture;
+  }
+  /// The reflectance rho of vertex v of polygon p: its material's, times its texture factor.
+  Vec3 reflectance(size_t p, uint32_t v) const {
+    const Vec3 rho = material_of(p).reflectance;
+    return texture_factors[p].empty() ? rho : rho * texture_factors[p][v];
+  }
   /// Radiosity B = E + rho * H of vertex v of polygon p.
   Vec3 radiosity(size_t p, uint32_t v) const {
-    const Material& m = material_of(p);
-    return m.emission + m.reflectance * vertex_states[p][v].irradiance;
+    return material_of(p).emission + reflectance(p, v) * vertex_states[p][v].irradiance;
   }
 };
 

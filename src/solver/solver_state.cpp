@@ -9,6 +9,7 @@
 #include "mesh/sample_points.h"
 #include "mesh/subdivide.h"
 #include "solver/light_source.h"
+#include "solver/texture_factors.h"
 #include "visibility/segment.h"
 
 namespace rad {
@@ -80,6 +81,13 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   energy.unshot_energy.assign(h.triangles.size(), UnshotEnergy{});
   double total_area = 0.0;
   sol.vertex_states.resize(h.triangles.size());
+  sol.texture_factors.resize(h.triangles.size());
+  tbb::parallel_for(size_t(0), h.triangles.size(), [&](size_t t) {
+    if (is_textured(h.triangles, t, sol.texture_of(t))) {
+      sol.texture_factors[t] =
+          initial_texture_factors(h.triangles, t, sol.texture_of(t), sol.mesh.polygons[t]);
+    }
+  });
   for (size_t t = 0; t < h.triangles.size(); ++t) {
     const Vec3 e = sol.material_of(t).emission;
     sol.vertex_states[t].assign(sol.mesh.polygons[t].vertex_count(), VertexState{.unshot = e});

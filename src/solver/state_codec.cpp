@@ -124,9 +124,11 @@ ShotSource read_shot(ByteReader& r, size_t clusters, const std::vector<Light>& l
 }
 
 void write_polygon(ByteWriter& w, const PolygonMesh& p, const std::vector<VertexState>& states,
+                   const std::vector<Vec3>& texture_factors,
                    const std::vector<VertexCopy>& copies) {
   w.vec(p.positions);
   w.vec(states);
+  w.vec(texture_factors);
   w.vec(p.elements);
   // Sorted, so equal states write equal files (the map's order depends on its history).
   std::vector<std::pair<uint64_t, uint32_t>> mids(p.midpoints.entries().begin(),
@@ -141,9 +143,11 @@ void write_polygon(ByteWriter& w, const PolygonMesh& p, const std::vector<Vertex
 }
 
 void read_polygon(ByteReader& r, PolygonMesh& p, std::vector<VertexState>& states,
-                  std::vector<VertexCopy>& copies, size_t polygons) {
+                  std::vector<Vec3>& texture_factors, std::vector<VertexCopy>& copies,
+                  size_t polygons, bool textured) {
   r.vec(p.positions);
   r.vec(states);
+  r.vec(texture_factors);
   r.vec(p.elements);
   std::vector<uint64_t> keys;
   std::vector<uint32_t> values;
@@ -154,6 +158,8 @@ void read_polygon(ByteReader& r, PolygonMesh& p, std::vector<VertexState>& state
   const size_t nv = p.positions.size(), ne = p.elements.size();
   if (nv < 3 || ne < 1) r.fail("a polygon without its triangle");
   if (states.size() != nv) r.fail("vertex states not one per vertex");
+  if (texture_factors.size() != (textured ? nv : 0))
+    r.fail(textured ? "texture factors not one per vertex" : "texture factors of no texture");
   for (size_t e = 0; e < ne; ++e) {
     const Element& el = p.elements[e];
     if (el.v[0] >= nv || el.v[1] >= nv || el.v[2] >= nv) r.fail("an element of no vertex");

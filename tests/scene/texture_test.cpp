@@ -1,0 +1,203 @@
+// Textures as the solver reads them: decoded to linear colour once, filtered over a footprint,
+// wrapped as the sampler says; and the texture coordinates the glTF and OBJ readers hand on.
+#include "scene/texture.h"
+
+#include <gtest/gtest.h>
+#include <stb/stb_image_write.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include "scene/gltf_reader.h"
+#include "scene/obj_reader.h"
+#include "scene_texts.h"
+
+namespace rad {
+namespace {
+
+namespace fs = std::filesystem;
+
+// PNG bytes of a w x h RGBA image.
+std::string png(int w, int h, const std::vector<unsigned char>& rgba) {
+  std::string out;
+  stbi_write_png_to_func(
+      [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
+      },
+      &out, w, h, 4, rgba.data(), w * 4);
+  return out;
+}
+
+std::shared_ptr<TextureImage> decode(const std::string& bytes) {
+  return decode_texture(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), "t");
+}
+
+// A 4 x 2 image: row 0 black, white, black, white; row 1 all sRGB 188 (linear ~0.5), the last
+// texel half transparent.
+std::string four_by_two() {
+  std::vector<unsigned char> p;
+  for (int x = 0; x < 4; ++x) {
+    const unsigned char c = x % 2 ? 255 : 0;
+    p.insert(p.end(), {c, c, c, 255});
+  }
+  for (int x = 0; x < 4; ++x)
+    p.insert(p.end(), {188, 188, 188, (unsigned char)(x == 3 ? 128 : 255)});
+  return png(4, 2, p);
+}
+
+TEST(Texture, DecodesToLinearColourWithAlphaAndMipLevels) {
+  const auto t = decode(four_by_two());
+  ASSERT_TRUE(t);
+  ASSERT_EQ(t->levels.size(), 3u) << "4x2, 2x1, 1x1";
+  EXPECT_EQ(t->levels[1].width, 2);
+  EXPECT_EQ(t->levels[1].height, 1);
+  const Vec4 grey = t->levels[0].texels[4];
+  EXPECT_NEAR(grey.x, 0.5029f, 1e-3f) << "sRGB 188 decoded to linear";
+  EXPECT_NEAR(t->levels[0].texels[7].w, 128.0f / 255.0f, 1e-6f) << "alpha stays linear";
+  EXPECT_NEAR(t->mean.x, (2.0f * 1.0f + 4.0f * grey.x) / 8.0f, 1e-5f);
+  EXPECT_NEAR(t->levels[2].texels[0].x, t->mean.x, 1e-5f) << "the last level is the mean";
+}
+
+TEST(Texture, SamplesTexelsWhenSmallAndTheMeanWhenTheFootprintCoversTheImage) {
+  TextureMap m{decode(four_by_two()), {}};
+  ASSERT_TRUE(m);
+  // Texel centres of row 0, x = 1 (white) and x = 2 (black).
+  EXPECT_NEAR(sample_texture(m, Vec2(1.5f / 4, 0.25f), 0.0f).x, 1.0f, 1e-6f);
+  EXPECT_NEAR(sample_texture(m, Vec2(2.5f / 4, 0.25f), 0.0f).x, 0.0f, 1e-6f);
+  // Between them, linear; nearest keeps the texel.
+  EXPECT_NEAR(sample_texture(m, Vec2(2.0f / 4, 0.25f), 0.0f).x, 0.5f, 1e-6f);
+  TextureMap nearest = m;
+  nearest.sampler.nearest = true;
+  EXPECT_NEAR(sample_texture(nearest, Vec2(1.9f / 4, 0.25f), 0.0f).x, 1.0f, 1e-6f);
+  // A footprint as wide as the image reads its mean anywhere.
+  for (const float u : {0.1f, 0.5f, 0.9f}) {
+    EXPECT_NEAR(sample_texture(m, Vec2(u, 0.3f), 8.0f).x, m.image->mean.x, 1e-5f);
+  }
+  // Two texels wide at the row of alternating black and white: their mean, between levels 0 and 1.
+  const float two = sample_texture(m, Vec2(1.0f / 4, 0.25f), 2.0f).x;
+  EXPECT_GT(two, 0.3f);
+  EXPECT_LT(two, 0.9f);
+}
+
+TEST(Texture, CoordinatesWrapAsTheSamplerSays) {
+  TextureMap m{decode(four_by_two()), {}};
+  const Vec2 white(1.5f / 4, 0.25f);
+  const float inside = sample_texture(m, white, 0.0f).x;
+  EXPECT_EQ(sample_texture(m, white + Vec2(3.0f, -2.0f), 0.0f).x, inside) << "repeat";
+  m.sampler.wrap_s = TextureWrap::ClampToEdge;
+  EXPECT_NEAR(sample_texture(m, Vec2(7.0f, 0.25f), 0.0f).x, 1.0f, 1e-6f) << "last texel, white";
+  EXPECT_NEAR(sample_texture(m, Vec2(-7.0f, 0.25f), 0.0f).x, 0.0f, 1e-6f) << "first, black";
+  m.sampler.wrap_s = TextureWrap::MirroredRepeat;
+  // Mirrored: u = 1 + 0.375 reads u = 1 - 0.375 = texel 2 (black); u = 2.375 reads texel 1.
+  EXPECT_NEAR(sample_texture(m, Vec2(1.375f, 0.25f), 0.0f).x, 0.0f, 1e-6f);
+  EXPECT_NEAR(sample_texture(m, Vec2(2.375f, 0.25f), 0.0f).x, 1.0f, 1e-6f);
+  // Non-finite and huge coordinates read a texel, never out of the image.
+  for (const float bad : {NAN, INFINITY, -1e30f, 1e30f}) {
+    for (const TextureWrap w :
+         {TextureWrap::Repeat, TextureWrap::ClampToEdge, TextureWrap::MirroredRepeat}) {
+      m.sampler.wrap_s = m.sampler.wrap_t = w;
+      const Vec4 s = sample_texture(m, Vec2(bad, bad), bad);
+      EXPECT_TRUE(std::isfinite(s.x) && s.x >= 0.0f && s.x <= 1.0f);
+    }
+  }
+}
+
+TEST(Texture, WhatIsNotAnImageIsNoTexture) {
+  EXPECT_FALSE(decode("not a png"));
+  const std::string ok = four_by_two();
+  EXPECT_FALSE(decode(ok.substr(0, ok.size() / 2))) << "truncated";
+  EXPECT_FALSE(decode(""));
+  EXPECT_FALSE(read_texture_file("/nonexistent/rad/texture.png"));
+}
+
+// A unit quad with texture coordinates, its material's base texture (sampler: clamp in s,
+// nearest) read through KHR_texture_transform.
+std::string textured_quad_gltf(const std::string& image) {
+  std::string buf;
+  const float p[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  buf.append(reinterpret_cast<const char*>(p), sizeof p);
+  const float uv[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  buf.append(reinterpret_cast<const char*>(uv), sizeof uv);
+  const uint16_t idx[6] = {0, 1, 2, 0, 2, 3};
+  buf.append(reinterpret_cast<const char*>(idx), sizeof idx);
+  return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+    "nodes": [{"mesh": 0}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2,
+                                "material": 0}]}],
+    "materials": [{"name": "Wood", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 1, 1, 1],
+       "baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform":
+          {"offset": [0, 1], "rotation": 1.5707963267948966, "scale": [0.5, 0.5]}}}}}],
+    "textures": [{"source": 0, "sampler": 0}],
+    "samplers": [{"wrapS": 33071, "wrapT": 33648, "magFilter": 9728}],
+    "images": [{"uri": "data:image/png;base64,)" +
+         testing::base64(image) + R"("}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                   "min": [0, 0, 0], "max": [1, 1, 0]},
+                  {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
+                  {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}],
+    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                    {"buffer": 0, "byteOffset": 48, "byteLength": 32},
+                    {"buffer": 0, "byteOffset": 80, "byteLength": 12}],
+    "buffers": [{"byteLength": 92, "uri": "data:application/octet-stream;base64,)" +
+         testing::base64(buf) + R"("}]})";
+}
+
+TEST(TextureCoordinates, GltfReadsThemThroughTheTextureTransformWithItsSampler) {
+  const Model m = parse_gltf(textured_quad_gltf(four_by_two()), "quad.gltf", "");
+  ASSERT_EQ(m.materials.size(), 1u);
+  const ModelMaterial& wood = m.materials[0];
+  ASSERT_TRUE(wood.base_texture);
+  EXPECT_NEAR(wood.reflectance.x, 0.5f * wood.base_texture.image->mean.x, 1e-6f)
+      << "the factor times the texture's mean";
+  EXPECT_EQ(wood.base_texture.sampler.wrap_s, TextureWrap::ClampToEdge);
+  EXPECT_EQ(wood.base_texture.sampler.wrap_t, TextureWrap::MirroredRepeat);
+  EXPECT_TRUE(wood.base_texture.sampler.nearest);
+  ASSERT_EQ(m.groups.size(), 1u);
+  const ModelGroup& g = m.groups[0];
+  ASSERT_EQ(g.triangle_uvs.size(), g.triangles.size());
+  // Offset (0, 1), a quarter turn, half scale: the extension's own example maps the quad to
+  // the image's lower left quadrant, rotated: (1, 0) goes to (0, 0.5), (1, 1) to (0.5, 0.5).
+  EXPECT_NEAR(g.triangle_uvs[0][1].x, 0.0f, 1e-6f);
+  EXPECT_NEAR(g.triangle_uvs[0][1].y, 0.5f, 1e-6f);
+  EXPECT_NEAR(g.triangle_uvs[0][2].x, 0.5f, 1e-6f);
+  EXPECT_NEAR(g.triangle_uvs[0][2].y, 0.5f, 1e-6f);
+  EXPECT_NEAR(g.triangle_uvs[0][0].x, 0.0f, 1e-6f);
+  EXPECT_NEAR(g.triangle_uvs[0][0].y, 1.0f, 1e-6f);
+}
+
+TEST(TextureCoordinates, AnUndecodableGltfImageLeavesTheFactorAlone) {
+  const Model m = parse_gltf(textured_quad_gltf("not an image"), "quad.gltf", "");
+  EXPECT_FALSE(m.materials[0].base_texture);
+  EXPECT_EQ(m.materials[0].reflectance.x, 0.5f);
+  EXPECT_EQ(m.textures.unread, 1u);
+  EXPECT_TRUE(m.groups[0].triangle_uvs.empty()) << "coordinates of no texture are not kept";
+}
+
+TEST(TextureCoordinates, ObjTurnsVtUpsideDownToTheImagesRows) {
+  const fs::path dir = fs::temp_directory_path() / ("rad_texture_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "checker.png", std::ios::binary) << four_by_two();
+  std::ofstream(dir / "quad.mtl") << "newmtl Checker\nKd 1 1 1\nmap_Kd checker.png\n"
+                                     "newmtl Plain\nKd 0.5 0.5 0.5\n";
+  std::ofstream(dir / "quad.obj") << "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                                     "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                                     "usemtl Plain\nf 1 2 3\nusemtl Checker\nf 1/1 3/3 4/4\n"
+                                     "f 2 3 4\n";
+  const Model m = read_obj_file((dir / "quad.obj").string(), SourceLoc{});
+  fs::remove_all(dir);
+  ASSERT_EQ(m.groups.size(), 1u);
+  const ModelGroup& g = m.groups[0];
+  ASSERT_EQ(g.triangle_uvs.size(), 3u) << "one per triangle once any has them";
+  EXPECT_TRUE(std::isnan(g.triangle_uvs[0][0].x)) << "an untextured face has none";
+  EXPECT_TRUE(std::isnan(g.triangle_uvs[2][0].x)) << "a textured face without vt: its mean";
+  EXPECT_EQ(g.triangle_uvs[1][0], Vec2(0.0f, 1.0f)) << "vt (0, 0) is the image's last row";
+  EXPECT_EQ(g.triangle_uvs[1][1], Vec2(1.0f, 0.0f));
+  EXPECT_TRUE(m.materials[g.material[1]].base_texture);
+  EXPECT_FALSE(m.materials[g.material[0]].base_texture);
+}
+
+}  // namespace
+}  // namespace rad
