@@ -172,8 +172,13 @@ struct Placer {
       t.normal.insert(t.normal.end(), f.normal.begin() + b, f.normal.begin() + e);
       t.area.insert(t.area.end(), f.area.begin() + b, f.area.begin() + e);
       t.object.resize(t.corners.size(), id);
+      if (!f.uv.empty()) {
+        t.uv.resize(uint32_t(t.corners.size()) - p.triangle_count, kNoTextureCoordinates);
+        t.uv.insert(t.uv.end(), f.uv.begin() + b, f.uv.begin() + e);
+      }
       SceneObject& s = out.objects.back();
       s.material = p.material;
+      s.base_texture = p.base_texture;
       s.casts_shadows = p.casts_shadows;
       s.receives_shadows = p.receives_shadows;
       box = p.box;

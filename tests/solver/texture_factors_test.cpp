@@ -9,6 +9,7 @@
 
 #include <cmath>
 
+#include "hierarchy/auto_hierarchy.h"
 #include "scene_builder.h"
 #include "visibility/backend.h"
 
@@ -128,6 +129,27 @@ TEST(TextureFactors, AVertexReadsItsTexelWhenSmallAndTheMeanWhenItCoversTheImage
   const Vec3 whole = texture_factor(h.triangles, floor, t, {0.5f, 0, 0.5f}, 1.0f);
   EXPECT_NEAR(whole.x, 1.0f, 1e-3f);
   EXPECT_NEAR(whole.z, 1.0f, 1e-3f);
+}
+
+TEST(TextureFactors, RegroupingKeepsTheTexturesAndTheirCoordinates) {
+  const auto checker = checker_image();
+  const Hierarchy h = build_hierarchy(room(checker, true));
+  for (const HierarchyMode mode : {HierarchyMode::Automatic, HierarchyMode::Flat}) {
+    const Hierarchy r = regrouped_hierarchy(h, mode);
+    ASSERT_EQ(r.triangles.uv.size(), r.triangles.size()) << to_string(mode);
+    size_t textured = 0;
+    for (size_t t = 0; t < r.triangles.size(); ++t) {
+      const TextureMap& m = r.objects[size_t(r.triangles.object[t])].base_texture;
+      if (!is_textured(r.triangles, t, m)) continue;
+      ++textured;
+      // The coordinates are the floor's: u = x, v = z at every corner.
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(r.triangles.uv[t][size_t(k)],
+                  Vec2(r.triangles.corners[t][size_t(k)].x, r.triangles.corners[t][size_t(k)].z));
+      }
+    }
+    EXPECT_EQ(textured, 2u) << to_string(mode);
+  }
 }
 
 TEST(TextureFactors, ACheckerFloorSolvesAsTheFloorCutIntoColouredSquares) {
