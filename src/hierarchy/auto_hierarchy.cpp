@@ -181,6 +181,7 @@ struct Placer {
       s.base_texture = p.base_texture;
       s.casts_shadows = p.casts_shadows;
       s.receives_shadows = p.receives_shadows;
+      s.two_sided = p.two_sided;  // for the summary: its triangles already face both ways
       box = p.box;
     } else {
       for (const int32_t c : o.children) {

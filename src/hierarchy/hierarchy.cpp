@@ -33,6 +33,7 @@ struct Builder {
       placement = placement * transform_matrix(content->transforms);
       if (!flags.casts_shadows) flags.casts_shadows = content->flags.casts_shadows;
       if (!flags.receives_shadows) flags.receives_shadows = content->flags.receives_shadows;
+      if (!flags.two_sided) flags.two_sided = content->flags.two_sided;
       if (!flags.has_lights)
         flags.has_lights = content->flags.has_lights, flags.lights = content->flags.lights;
     }
@@ -60,6 +61,7 @@ struct Builder {
       const SceneObject* up = parent >= 0 ? &out.objects[size_t(parent)] : nullptr;
       o.casts_shadows = flags.casts_shadows.value_or(up ? up->casts_shadows : true);
       o.receives_shadows = flags.receives_shadows.value_or(up ? up->receives_shadows : true);
+      o.two_sided = flags.two_sided.value_or(up ? up->two_sided : false);
       o.influence = flags.has_lights ? id : (up ? up->influence : -1);
     }
     flags_of.push_back(std::move(flags));
@@ -112,6 +114,26 @@ struct Builder {
         out.triangles.area.push_back(area);
         out.triangles.object.push_back(id);
         for (const Vec3& p : t) box.extend(p);
+      }
+      // Each side its own polygon: the same triangles turned over, after them.
+      if (out.objects[size_t(id)].two_sided) {
+        Triangles& tris = out.triangles;
+        const size_t first = out.objects[size_t(id)].first_triangle, end = tris.size();
+        if (end + (end - first) > limits.max_triangles) {
+          throw Error(d.loc,
+                      fmt::format("the scene places more than {} triangles", limits.max_triangles));
+        }
+        for (size_t i = first; i < end; ++i) {
+          const std::array<Vec3, 3> c = tris.corners[i];
+          tris.corners.push_back({c[0], c[2], c[1]});
+          tris.normal.push_back(-tris.normal[i]);
+          tris.area.push_back(tris.area[i]);
+          tris.object.push_back(id);
+          if (!tris.uv.empty()) {
+            const std::array<Vec2, 3> uv = tris.uv[i];
+            tris.uv.push_back({uv[0], uv[2], uv[1]});
+          }
+        }
       }
     } else {
       const size_t lights_before = out.lights.size();
@@ -300,14 +322,17 @@ std::string summarize(const Hierarchy& h) {
     s += fmt::format("Lights: {} ({} point, {} spot, {} directional; {} with IES photometry)\n",
                      h.lights.size(), kinds[0], kinds[1], kinds[2], ies);
   }
-  size_t no_cast = 0, no_receive = 0, lists = 0;
+  size_t no_cast = 0, no_receive = 0, two_sided = 0, lists = 0;
   for (const SceneObject& o : h.objects) {
-    if (o.kind == ObjectKind::Pure) no_cast += !o.casts_shadows, no_receive += !o.receives_shadows;
+    if (o.kind == ObjectKind::Pure) {
+      no_cast += !o.casts_shadows, no_receive += !o.receives_shadows, two_sided += o.two_sided;
+    }
     lists += !o.lit.empty();
   }
-  if (no_cast + no_receive + lists > 0) {
-    s += fmt::format("Flags: {} Pures cast no shadows, {} receive none; {} Lights lists\n", no_cast,
-                     no_receive, lists);
+  if (no_cast + no_receive + two_sided + lists > 0) {
+    s += fmt::format(
+        "Flags: {} Pures cast no shadows, {} receive none, {} two-sided; {} Lights lists\n",
+        no_cast, no_receive, two_sided, lists);
   }
   if (h.model) {
     // The names are what --emit patterns match: the summary lists them (the first few).

@@ -48,8 +48,11 @@ struct SceneObject {
   TextureMap base_texture;  // Pure only: see ObjectDescription::base_texture
   // The per-object flags of design §8, resolved: the object's own setting, else its nearest
   // ancestor's, else the default.
-  bool casts_shadows = true;       // false: shadow rays pass through its triangles
-  bool receives_shadows = true;    // false: its vertices take every visibility term as 1
+  bool casts_shadows = true;     // false: shadow rays pass through its triangles
+  bool receives_shadows = true;  // false: its vertices take every visibility term as 1
+  // A Pure's second face of each triangle (ObjectFlags::two_sided): its triangles' second half
+  // are the first half's, turned over.
+  bool two_sided = false;
   int32_t influence = -1;          // the object whose Lights list applies here; -1: lights all
   std::vector<TriangleRange> lit;  // with a Lights list: what it lights, sorted and merged
 };

@@ -46,6 +46,7 @@ inline const std::array<Vec2, 3> kNoTextureCoordinates = {
 struct ObjectFlags {
   std::optional<bool> casts_shadows;     // false: invisible to shadow rays
   std::optional<bool> receives_shadows;  // false: every visibility term of its vertices is 1
+  std::optional<bool> two_sided;         // true: each triangle also faces the other way
   bool has_lights = false;               // an influence list was given: it lights only
   std::vector<NamedObject> lights;       // itself and these objects (with all below them)
 };

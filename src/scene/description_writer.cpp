@@ -92,6 +92,7 @@ void write_description(const SceneDescription& scene, std::ostream& out) {
     const ObjectFlags& f = o.flags;
     if (f.casts_shadows) out << " CastsShadows " << (*f.casts_shadows ? "Yes" : "No");
     if (f.receives_shadows) out << " ReceivesShadows " << (*f.receives_shadows ? "Yes" : "No");
+    if (f.two_sided) out << " TwoSided " << (*f.two_sided ? "Yes" : "No");
     if (f.has_lights) {
       out << " Lights {";
       for (const NamedObject& n : f.lights) out << ' ' << quoted(n.name);

@@ -213,6 +213,7 @@ ModelMaterial material_of(const tinygltf::Material& g, const Context& c, const t
   ModelMaterial mat;
   mat.name = g.name.empty() ? "material" : g.name;
   mat.loc = SourceLoc{path};
+  mat.two_sided = g.doubleSided;
   const auto& f = g.pbrMetallicRoughness.baseColorFactor;
   if (f.size() >= 3) mat.reflectance = Vec3(float(f[0]), float(f[1]), float(f[2]));
   int t = g.pbrMetallicRoughness.baseColorTexture.index;

@@ -20,6 +20,7 @@ struct ModelMaterial {
   Vec3 emission{0.0f};      // OBJ Ke
   TextureMap base_texture;  // OBJ map_Kd, glTF baseColorTexture (empty: none read)
   SourceLoc loc;            // where it was defined
+  bool two_sided = false;   // glTF doubleSided: lit, reflecting and shooting on both sides
 };
 
 /// A named part of the model (OBJ `o`/`g`): triangles, each with its material.

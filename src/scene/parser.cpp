@@ -22,38 +22,13 @@ namespace rad {
 
 namespace {
 
-constexpr std::array<std::string_view, 32> kKeywords = {"Object",
-                                                        "Assembly",
-                                                        "Composite",
-                                                        "Pure",
-                                                        "Reflectivity",
-                                                        "Color",
-                                                        "Emission",
-                                                        "File",
-                                                        "Data",
-                                                        "Copy",
-                                                        "CastsShadows",
-                                                        "ReceivesShadows",
-                                                        "Lights",
-                                                        "Yes",
-                                                        "No",
-                                                        "Translate",
-                                                        "Rotate",
-                                                        "Scale",
-                                                        "Model",
-                                                        "Light",
-                                                        "Type",
-                                                        "Point",
-                                                        "Spot",
-                                                        "Directional",
-                                                        "Position",
-                                                        "Direction",
-                                                        "Intensity",
-                                                        "Cone",
-                                                        "AngularDiameter",
-                                                        "Ies",
-                                                        "IesC0",
-                                                        "Group"};
+constexpr std::array<std::string_view, 33> kKeywords = {
+    "Object",      "Assembly", "Composite", "Pure",      "Reflectivity", "Color",
+    "Emission",    "File",     "Data",      "Copy",      "CastsShadows", "ReceivesShadows",
+    "TwoSided",    "Lights",   "Yes",       "No",        "Translate",    "Rotate",
+    "Scale",       "Model",    "Light",     "Type",      "Point",        "Spot",
+    "Directional", "Position", "Direction", "Intensity", "Cone",         "AngularDiameter",
+    "Ies",         "IesC0",    "Group"};
 constexpr float kDegree = std::numbers::pi_v<float> / 180.0f;
 constexpr std::array<const char*, 3> kChannels = {"red", "green", "blue"};
 
@@ -238,10 +213,11 @@ class Parser {
     d.copy_of = copy_of;
     const bool model = !model_file.text.empty();
     d.flags = parse_flags(d.transforms, /*body=*/copy_of < 0 && !model);
-    if (light && (d.flags.casts_shadows || d.flags.receives_shadows || d.flags.has_lights)) {
+    if (light && (d.flags.casts_shadows || d.flags.receives_shadows || d.flags.two_sided ||
+                  d.flags.has_lights)) {
       throw Error(kind.loc,
                   "a Light takes Translate, Rotate and Scale, not CastsShadows, "
-                  "ReceivesShadows or Lights (it is not a surface)");
+                  "ReceivesShadows, TwoSided or Lights (it is not a surface)");
     }
     scene_.objects.push_back(std::move(d));
     complete_.push_back(0);
@@ -302,7 +278,8 @@ class Parser {
   }
 
   // Flags ::= Flag Flags | (nothing)
-  // Flag  ::= "CastsShadows" YesNo | "ReceivesShadows" YesNo | "Lights" "{" Strings "}"
+  // Flag  ::= "CastsShadows" YesNo | "ReceivesShadows" YesNo | "TwoSided" YesNo
+  //         | "Lights" "{" Strings "}"
   //         | "Translate" Vector | "Rotate" Vector Real | "Scale" (Real | Vector)
   // Transforms are kept in the order written. With `body`, a '{' must follow.
   ObjectFlags parse_flags(std::vector<Transform>& transforms, bool body) {
@@ -313,10 +290,11 @@ class Parser {
         transforms.push_back(parse_transform());
         continue;
       }
-      if (is_word(t, "CastsShadows") || is_word(t, "ReceivesShadows")) {
+      if (is_word(t, "CastsShadows") || is_word(t, "ReceivesShadows") || is_word(t, "TwoSided")) {
         const Token flag = tokens_.next();
-        std::optional<bool>& slot =
-            flag.text == "CastsShadows" ? f.casts_shadows : f.receives_shadows;
+        std::optional<bool>& slot = flag.text == "CastsShadows"      ? f.casts_shadows
+                                    : flag.text == "ReceivesShadows" ? f.receives_shadows
+                                                                     : f.two_sided;
         if (slot) throw Error(flag.loc, "'" + flag.text + "' given twice for one object");
         const Token value = tokens_.next();
         if (!is_word(value, "Yes") && !is_word(value, "No")) {
@@ -338,7 +316,9 @@ class Parser {
         tokens_.next();
       } else {
         if (body && !is_symbol(t, '{')) {
-          fail_expected(t, "a transform, 'CastsShadows', 'ReceivesShadows', 'Lights' or '{'", true);
+          fail_expected(
+              t, "a transform, 'CastsShadows', 'ReceivesShadows', 'TwoSided', 'Lights' or '{'",
+              true);
         }
         return f;
       }

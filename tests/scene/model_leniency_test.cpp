@@ -167,8 +167,8 @@ TEST_F(ModelLeniency, ObjTexturePathsWithBackslashesAndOtherCaseAreFoundBesideTh
   const Model m =
       read_obj_file(write("walls.obj",
                           "mtllib walls.mtl mats/stone.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\n"
-                          "usemtl Wall\nf 1 2 3\nusemtl Floor\nf 1 2 3\nusemtl Stone\nf 1 2 3\n"
-                          "usemtl Far\nf 1 2 3\n"),
+                          "vt 0 0\nusemtl Wall\nf 1/1 2/1 3/1\nusemtl Floor\nf 1/1 2/1 3/1\n"
+                          "usemtl Stone\nf 1/1 2/1 3/1\nusemtl Far\nf 1/1 2/1 3/1\n"),
                     SourceLoc{});
   EXPECT_EQ(testing::internal::GetCapturedStderr(), "") << "every texture found";
   ASSERT_EQ(m.materials.size(), 4u);

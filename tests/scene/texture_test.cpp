@@ -11,7 +11,9 @@
 #include <fstream>
 #include <numbers>
 
+#include "hierarchy/hierarchy.h"
 #include "scene/gltf_reader.h"
+#include "scene/model_scene.h"
 #include "scene/obj_reader.h"
 #include "scene_texts.h"
 
@@ -115,7 +117,7 @@ TEST(Texture, WhatIsNotAnImageIsNoTexture) {
 
 // A unit quad with texture coordinates, its material's base texture (sampler: clamp in s,
 // nearest) read through KHR_texture_transform.
-std::string textured_quad_gltf(const std::string& image) {
+std::string textured_quad_gltf(const std::string& image, bool double_sided = false) {
   std::string buf;
   const float p[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
   buf.append(reinterpret_cast<const char*>(p), sizeof p);
@@ -127,7 +129,9 @@ std::string textured_quad_gltf(const std::string& image) {
     "nodes": [{"mesh": 0}],
     "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2,
                                 "material": 0}]}],
-    "materials": [{"name": "Wood", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 1, 1, 1],
+    "materials": [{"name": "Wood", "doubleSided": )" +
+         std::string(double_sided ? "true" : "false") + R"(,
+       "pbrMetallicRoughness": {"baseColorFactor": [0.5, 1, 1, 1],
        "baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform":
           {"offset": [0, 1], "rotation": 1.5707963267948966, "scale": [0.5, 0.5]}}}}}],
     "textures": [{"source": 0, "sampler": 0}],
@@ -197,6 +201,22 @@ TEST(TextureCoordinates, ObjTurnsVtUpsideDownToTheImagesRows) {
   EXPECT_EQ(g.triangle_uvs[1][1], Vec2(1.0f, 0.0f));
   EXPECT_TRUE(m.materials[g.material[1]].base_texture);
   EXPECT_FALSE(m.materials[g.material[0]].base_texture);
+}
+
+TEST(TwoSidedModels, AGltfDoubleSidedMaterialFacesBothWaysWithItsTexture) {
+  for (const bool two : {false, true}) {
+    ModelOptions o;
+    o.require_emission = false;
+    const Hierarchy h = build_hierarchy(
+        model_to_scene(parse_gltf(textured_quad_gltf(four_by_two(), two), "quad.gltf", ""), o));
+    ASSERT_EQ(h.triangles.size(), two ? 4u : 2u);
+    if (!two) continue;
+    EXPECT_EQ(h.triangles.normal[2], -h.triangles.normal[0]);
+    // The back's corners b and c swap, and their texture coordinates with them.
+    EXPECT_EQ(h.triangles.corners[2][1], h.triangles.corners[0][2]);
+    EXPECT_EQ(h.triangles.uv[2][1], h.triangles.uv[0][2]);
+    EXPECT_EQ(h.triangles.uv[2][0], h.triangles.uv[0][0]);
+  }
 }
 
 }  // namespace
