@@ -1,0 +1,123 @@
+// A two-sided surface (`TwoSided Yes`, glTF doubleSided) receives, reflects and shoots on both
+// sides, each its own radiosity: it solves as two one-sided surfaces back to back.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "scene/parser.h"
+#include "scene_builder.h"
+#include "visibility/backend.h"
+
+namespace rad {
+namespace {
+
+// A 2 x 1 x 1 room whose left half has a lamp; a screen across the middle (x = 1, up to
+// y = 0.6) faces the lamp, and light reaches its far side only over it. `screen` is the
+// screen's objects.
+std::string room(const std::string& screen) {
+  auto quad = [](const std::string& name, const std::string& flags, const std::string& corners,
+                 const std::string& material) {
+    return "Object \"" + name + "\" Pure " + flags + " {\n" + material + "\nData {\n" + corners +
+           "}\n}\n";
+  };
+  const std::string wall = "Reflectivity 0.7 Color <1 1 1> Emission 0";
+  std::string s = "\"screen room\"\nObject \"room\" Assembly {\n";
+  s += quad("floor", "", "<0 0 0> <0 0 1> <2 0 1>\n<0 0 0> <2 0 1> <2 0 0>\n", wall);
+  s += quad("ceiling", "", "<0 1 0> <2 1 0> <2 1 1>\n<0 1 0> <2 1 1> <0 1 1>\n", wall);
+  s += quad("x0", "", "<0 0 0> <0 1 0> <0 1 1>\n<0 0 0> <0 1 1> <0 0 1>\n", wall);
+  s += quad("x2", "", "<2 0 0> <2 0 1> <2 1 1>\n<2 0 0> <2 1 1> <2 1 0>\n", wall);
+  s += quad("z0", "", "<0 0 0> <2 0 0> <2 1 0>\n<0 0 0> <2 1 0> <0 1 0>\n", wall);
+  s += quad("z1", "", "<0 0 1> <0 1 1> <2 1 1>\n<0 0 1> <2 1 1> <2 0 1>\n", wall);
+  s += quad("lamp", "",
+            "<0.4 0.999 0.4> <0.6 0.999 0.4> <0.6 0.999 0.6>\n"
+            "<0.4 0.999 0.4> <0.6 0.999 0.6> <0.4 0.999 0.6>\n",
+            "Reflectivity 0 Color <1 1 1> Emission 30");
+  return s + screen + "}\n";
+}
+
+// The screen facing the lamp (-x); its far side, the same corners turned over.
+const char* kNear = "<1 0 0.1> <1 0 0.9> <1 0.6 0.9>\n<1 0 0.1> <1 0.6 0.9> <1 0.6 0.1>\n";
+const char* kFar = "<1 0 0.1> <1 0.6 0.9> <1 0 0.9>\n<1 0 0.1> <1 0.6 0.1> <1 0.6 0.9>\n";
+const char* kScreen = "Reflectivity 0.5 Color <1 0.8 0.6> Emission 0";
+
+std::string object(const std::string& name, const std::string& flags, const char* corners) {
+  return "Object \"" + name + "\" Pure " + flags + " {\n" + kScreen + "\nData {\n" + corners +
+         "}\n}\n";
+}
+
+// Radiosity integrated over triangles [first, last) of `s`'s hierarchy.
+DVec3 integral(const SolverState& s, size_t first, size_t last) {
+  DVec3 sum(0.0);
+  for (size_t p = first; p < last; ++p) {
+    const PolygonMesh& m = s.solution.mesh.polygons[p];
+    for_each_leaf(m, [&](uint32_t e) {
+      const Element& el = m.elements[e];
+      const Vec3 b = s.solution.radiosity(p, el.v[0]) + s.solution.radiosity(p, el.v[1]) +
+                     s.solution.radiosity(p, el.v[2]);
+      sum += DVec3(b) * (double(el.area) / 3.0);
+    });
+  }
+  return sum;
+}
+
+// The triangles of the Pure named `name`.
+std::pair<size_t, size_t> triangles_of(const Hierarchy& h, const std::string& name) {
+  for (const SceneObject& o : h.objects) {
+    if (o.name == name) return {o.first_triangle, o.first_triangle + o.triangle_count};
+  }
+  ADD_FAILURE() << "no object " << name;
+  return {0, 0};
+}
+
+TEST(TwoSided, APanelSolvesAsTwoOneSidedPanelsBackToBack) {
+  const Hierarchy one = build_hierarchy(
+      parse_scene_text(room(object("screen", "TwoSided Yes", kNear)), "two_sided.des"));
+  const Hierarchy two = build_hierarchy(parse_scene_text(
+      room(object("near", "", kNear) + object("far", "", kFar)), "back_to_back.des"));
+  const auto [first, last] = triangles_of(one, "screen");
+  ASSERT_EQ(last - first, 4u) << "two triangles, each facing both ways";
+  EXPECT_TRUE(one.objects[one.triangles.object[first]].two_sided);
+  // The second half is the first turned over: same corners, opposite normals.
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(one.triangles.normal[first + 2 + i], -one.triangles.normal[first + i]);
+    EXPECT_EQ(one.triangles.area[first + 2 + i], one.triangles.area[first + i]);
+  }
+  const auto vis_one = make_visibility_backend(BackendKind::Embree, one);
+  const auto vis_two = make_visibility_backend(BackendKind::Embree, two);
+  const SolverState a = testing::solve_shots(one, *vis_one, SolverOptions{}, 300);
+  const SolverState b = testing::solve_shots(two, *vis_two, SolverOptions{}, 300);
+  const auto [near_b, near_e] = triangles_of(two, "near");
+  const auto [far_b, far_e] = triangles_of(two, "far");
+  const DVec3 near_one = integral(a, first, first + 2), far_one = integral(a, first + 2, last);
+  const DVec3 near_two = integral(b, near_b, near_e), far_two = integral(b, far_b, far_e);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(near_one[k] / near_two[k], 1.0, 0.005) << "channel " << k;
+    EXPECT_NEAR(far_one[k] / far_two[k], 1.0, 0.005) << "channel " << k;
+    // The far side has its own light: what comes over the screen, less than the near side's.
+    EXPECT_GT(far_one[k], 0.02 * near_one[k]) << "channel " << k;
+    EXPECT_LT(far_one[k], 0.8 * near_one[k]) << "channel " << k;
+  }
+  // The room beyond the screen is lit by both sides' light alike.
+  const auto [x2_b, x2_e] = triangles_of(one, "x2");
+  const auto [x2b_b, x2b_e] = triangles_of(two, "x2");
+  const DVec3 wall_one = integral(a, x2_b, x2_e), wall_two = integral(b, x2b_b, x2b_e);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(wall_one[k] / wall_two[k], 1.0, 0.005);
+}
+
+TEST(TwoSided, OneSidedThePanelsBackIsNotThere) {
+  const Hierarchy h =
+      build_hierarchy(parse_scene_text(room(object("screen", "", kNear)), "one_sided.des"));
+  const auto [first, last] = triangles_of(h, "screen");
+  EXPECT_EQ(last - first, 2u);
+  EXPECT_FALSE(h.objects[h.triangles.object[first]].two_sided);
+  // `TwoSided No` below a two-sided Assembly: the nearest setting wins.
+  const Hierarchy n = build_hierarchy(
+      parse_scene_text("\"s\"\nObject \"g\" Assembly TwoSided Yes {\n" +
+                           object("a", "TwoSided No", kNear) + object("b", "", kFar) + "}\n",
+                       "nested.des"));
+  EXPECT_EQ(triangles_of(n, "a").second - triangles_of(n, "a").first, 2u);
+  EXPECT_EQ(triangles_of(n, "b").second - triangles_of(n, "b").first, 4u);
+}
+
+}  // namespace
+}  // namespace rad
