@@ -55,6 +55,7 @@ struct Regrouper {
     p.loc = o.loc;
     p.material = o.material;
     p.base_texture = o.base_texture;
+    p.cutout = o.cutout;
     if (!o.casts_shadows) p.flags.casts_shadows = false;
     if (!o.receives_shadows) p.flags.receives_shadows = false;
     if (with_triangles) {
@@ -179,6 +180,7 @@ struct Placer {
       SceneObject& s = out.objects.back();
       s.material = p.material;
       s.base_texture = p.base_texture;
+      s.cutout = p.cutout;
       s.casts_shadows = p.casts_shadows;
       s.receives_shadows = p.receives_shadows;
       s.two_sided = p.two_sided;  // for the summary: its triangles already face both ways

@@ -57,6 +57,7 @@ struct Builder {
       o.parent = parent;
       o.material = content->material;
       o.base_texture = content->base_texture;
+      o.cutout = content->cutout;
       o.first_triangle = static_cast<uint32_t>(out.triangles.size());
       const SceneObject* up = parent >= 0 ? &out.objects[size_t(parent)] : nullptr;
       o.casts_shadows = flags.casts_shadows.value_or(up ? up->casts_shadows : true);
@@ -322,17 +323,19 @@ std::string summarize(const Hierarchy& h) {
     s += fmt::format("Lights: {} ({} point, {} spot, {} directional; {} with IES photometry)\n",
                      h.lights.size(), kinds[0], kinds[1], kinds[2], ies);
   }
-  size_t no_cast = 0, no_receive = 0, two_sided = 0, lists = 0;
+  size_t no_cast = 0, no_receive = 0, two_sided = 0, cut = 0, lists = 0;
   for (const SceneObject& o : h.objects) {
     if (o.kind == ObjectKind::Pure) {
       no_cast += !o.casts_shadows, no_receive += !o.receives_shadows, two_sided += o.two_sided;
+      cut += bool(o.cutout);
     }
     lists += !o.lit.empty();
   }
-  if (no_cast + no_receive + two_sided + lists > 0) {
+  if (no_cast + no_receive + two_sided + cut + lists > 0) {
     s += fmt::format(
-        "Flags: {} Pures cast no shadows, {} receive none, {} two-sided; {} Lights lists\n",
-        no_cast, no_receive, two_sided, lists);
+        "Flags: {} Pures cast no shadows, {} receive none, {} two-sided, {} cut out; {} Lights "
+        "lists\n",
+        no_cast, no_receive, two_sided, cut, lists);
   }
   if (h.model) {
     // The names are what --emit patterns match: the summary lists them (the first few).
@@ -343,7 +346,7 @@ std::string summarize(const Hierarchy& h) {
     }
     if (names.size() > kListedMaterials) listed += ", ...";
     s += fmt::format("Materials: {} ({})\n", names.size(), listed);
-    s += fmt::format("Textures: {} read (their mean colour), {} unreadable\n",
+    s += fmt::format("Textures: {} read (per vertex, averaged over its element), {} unreadable\n",
                      h.model->textures.read, h.model->textures.unread);
   } else {
     // A description gives each Pure its own material: count the distinct ones.

@@ -81,6 +81,10 @@ struct ObjectDescription {
   /// material's reflectance scaled by the texture filtered over its element, over the
   /// texture's mean (solver/texture_factors.h).
   TextureMap base_texture;
+  /// Pure only: where a model's material is cut out (texture alpha below a cutoff), or none.
+  /// Shadow rays pass through the holes in every backend, and each vertex receives, reflects
+  /// and shoots only for the opaque part of its element.
+  AlphaMask cutout;
   std::vector<std::array<Vec3, 3>> triangles;  // Pure only: corners a, b, c (front: (b-a)x(c-a))
   std::vector<SourceLoc> triangle_locs;        // Pure only: where each was written (or empty)
   /// Pure only: texture coordinates of each triangle's corners (glTF convention: v down the

@@ -250,6 +250,16 @@ ModelMaterial material_of(const tinygltf::Material& g, const Context& c, const t
         mat.base_texture.sampler.wrap_t = wrap_of(s.wrapT);
         mat.base_texture.sampler.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
       }
+      // A cut-out: MASK at its cutoff, BLEND (which rad cannot blend) as MASK at 0.5, when some
+      // texel can fall below it.
+      const float scale = f.size() >= 4 ? float(f[3]) : 1.0f;
+      if (g.alphaMode == "MASK" || g.alphaMode == "BLEND") {
+        const float cutoff = g.alphaMode == "MASK" ? float(g.alphaCutoff) : 0.5f;
+        if ((it->second->has_alpha || scale < cutoff) && std::isfinite(scale) &&
+            std::isfinite(cutoff)) {
+          mat.cutout = {mat.base_texture, false, scale, cutoff};
+        }
+      }
       ++textures.read;
     } else {
       ++textures.unread;
@@ -529,7 +539,7 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
       // The base texture's coordinates, when the material has a texture and they are there.
       std::optional<View> uvs;
       const TextureCoordinates* uv_map = nullptr;
-      if (known && m.materials[material].base_texture) {
+      if (known && m.materials[material].uses_coordinates()) {
         uv_map = &coordinates[material];
         const auto a = p.attributes.find("TEXCOORD_" + std::to_string(uv_map->set));
         if (a != p.attributes.end()) {

@@ -21,6 +21,9 @@ struct ModelMaterial {
   TextureMap base_texture;  // OBJ map_Kd, glTF baseColorTexture (empty: none read)
   SourceLoc loc;            // where it was defined
   bool two_sided = false;   // glTF doubleSided: lit, reflecting and shooting on both sides
+  AlphaMask cutout;         // glTF alphaMode MASK or BLEND, OBJ map_d (empty: opaque)
+  /// Whether its faces need texture coordinates: it has a texture or a cut-out.
+  bool uses_coordinates() const { return base_texture || cutout; }
 };
 
 /// A named part of the model (OBJ `o`/`g`): triangles, each with its material.

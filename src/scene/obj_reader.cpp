@@ -251,6 +251,27 @@ Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& p
         names += (names.empty() ? "'" : ", '") + t.name + "'";
       }
     }
+    // map_d: a cut-out where its alpha (its grey level, in an image without alpha) is below 0.5.
+    if (!t.alpha_texname.empty() && !texture_folder.empty()) {
+      const auto own = material_folders.find(t.name);
+      const std::string& folder = own != material_folders.end() ? own->second : texture_folder;
+      const std::optional<std::string> file = find_texture(folder, t.alpha_texname);
+      std::shared_ptr<const TextureImage> image;
+      if (file) {
+        const auto [it, made] = decoded.try_emplace(*file);
+        if (made) it->second = read_texture_file(*file);
+        image = it->second;
+      }
+      if (image) {
+        mat.cutout.texture = {image, mat.base_texture.sampler};
+        mat.cutout.from_red = !image->has_alpha;
+      } else {
+        std::string& names =
+            unread[(fs::path(folder) / t.alpha_texname).string() +
+                   (file ? " (not an image stb_image decodes)" : " (no such file)")];
+        names += (names.empty() ? "'" : ", '") + t.name + "' (map_d: it stays opaque)";
+      }
+    }
     bool bad = false;
     for (int c = 0; c < 3; ++c) {
       bad |= !(mat.reflectance[c] >= 0.0f && std::isfinite(mat.reflectance[c])) ||
@@ -310,7 +331,7 @@ Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& p
       const bool known = id >= 0 && size_t(id) < m.materials.size();
       fallback_used |= !known;
       // Coordinates matter only under a texture; the group's are one per triangle or none.
-      const bool textured = known && m.materials[size_t(id)].base_texture;
+      const bool textured = known && m.materials[size_t(id)].uses_coordinates();
       if (textured && !has_uv && uvless_faces++ == 0) uvless_material = size_t(id);
       if (textured) {
         g.triangle_uvs.resize(g.triangles.size(), kNoTextureCoordinates);

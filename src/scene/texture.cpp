@@ -60,6 +60,7 @@ std::shared_ptr<TextureImage> make_image(unsigned char* pixels, int w, int h, st
     const unsigned char* p = pixels + 4 * i;
     const Vec4 t(lut[p[0]], lut[p[1]], lut[p[2]], float(p[3]) / 255.0f);
     base.texels[i] = t;
+    image->has_alpha |= p[3] != 255;
     sum += DVec3(t.x, t.y, t.z);
   }
   stbi_image_free(pixels);
@@ -136,6 +137,28 @@ std::shared_ptr<TextureImage> read_texture_file(const std::string& path) {
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (!in.good() && !in.eof()) return nullptr;
   return decode_texture(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), path);
+}
+
+bool opaque_at(const AlphaMask& m, Vec2 uv) {
+  const Vec4 s = sample_texture(m.texture, uv, 0.0f);
+  return (m.from_red ? s.x : s.w) * m.scale >= m.cutoff;
+}
+
+float opaque_fraction(const AlphaMask& m, Vec2 uv, float width) {
+  const TextureImage& image = *m.texture.image;
+  const float w = std::isfinite(width)
+                      ? std::min(width, float(std::max(image.width(), image.height())))
+                      : float(std::max(image.width(), image.height()));
+  const Vec2 step(w / float(image.width()), w / float(image.height()));
+  int opaque = 0;
+  for (int j = 0; j < 4; ++j) {
+    for (int i = 0; i < 4; ++i) {
+      const Vec2 at =
+          uv + step * Vec2((float(i) + 0.5f) / 4.0f - 0.5f, (float(j) + 0.5f) / 4.0f - 0.5f);
+      opaque += opaque_at(m, at);
+    }
+  }
+  return float(opaque) / 16.0f;
 }
 
 Vec4 sample_texture(const TextureMap& t, Vec2 uv, float width) {

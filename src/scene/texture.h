@@ -26,6 +26,7 @@ struct TextureImage {
   /// The size of the file's image; level 0 is that, or its reduction when larger than
   /// kMaxTextureTexels.
   int file_width = 0, file_height = 0;
+  bool has_alpha = false;  // some texel is not fully opaque
   int width() const { return levels.front().width; }
   int height() const { return levels.front().height; }
 };
@@ -51,6 +52,26 @@ struct TextureMap {
   TextureSampler sampler;
   explicit operator bool() const { return bool(image); }
 };
+
+/// Where a material is cut out (glTF alphaMode MASK, BLEND taken as MASK at 0.5; OBJ map_d):
+/// where the texture's alpha times `scale` is below `cutoff`, the surface is a hole that light
+/// passes through.
+struct AlphaMask {
+  TextureMap texture;
+  bool from_red = false;  // an OBJ map_d image without alpha: its grey level is the alpha
+  float scale = 1.0f;     // glTF baseColorFactor's alpha
+  float cutoff = 0.5f;
+  explicit operator bool() const { return bool(texture); }
+};
+
+/// Whether the mask is opaque at `uv`: its level-0 texel there (nearest, or bilinear when the
+/// sampler says linear), times the scale, at least the cutoff. The test every visibility backend
+/// makes where a shadow ray meets a cut-out triangle.
+bool opaque_at(const AlphaMask& m, Vec2 uv);
+
+/// The fraction of a square of `width` level-0 texels centred at `uv` that is opaque, from
+/// 4 x 4 opaque_at tests spread over it.
+float opaque_fraction(const AlphaMask& m, Vec2 uv, float width);
 
 /// Decodes an image file's bytes (whatever stb_image reads: PNG, JPEG, BMP, TGA, ...), or
 /// returns nullptr when they are not an image it decodes or hold more than 64 million pixels.

@@ -57,6 +57,12 @@ uint64_t solve_fingerprint(const Hierarchy& h, const SolverOptions& o, BackendKi
           .add(t.image->mean);
       f.add(t.sampler.wrap_s).add(t.sampler.wrap_t).add(t.sampler.nearest);
     }
+    f.add(bool(ob.cutout));
+    if (const AlphaMask& m = ob.cutout) {
+      f.add(std::string_view(m.texture.image->name)).add(m.texture.image->mean);
+      f.add(m.from_red).add(m.scale).add(m.cutoff).add(m.texture.sampler.wrap_s);
+      f.add(m.texture.sampler.wrap_t).add(m.texture.sampler.nearest);
+    }
     f.add(ob.casts_shadows).add(ob.receives_shadows).add(ob.influence).add(uint64_t(ob.lit.size()));
     for (const TriangleRange& r : ob.lit) f.add(r.first).add(r.count);
   }
@@ -157,7 +163,7 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   std::vector<std::vector<Vec3>> factors(np);
   for (size_t p = 0; p < np; ++p) {
     read_polygon(r, mesh.polygons[p], states[p], factors[p], copies[p], np,
-                 is_textured(s.solution.hierarchy->triangles, p, s.solution.texture_of(p)));
+                 is_textured(s.solution.hierarchy->triangles, p, s.solution.object_of(p)));
   }
   // A copy's source gathers: it is a vertex, and no copy itself (a chain would have the shot
   // read a gain while another thread writes it).

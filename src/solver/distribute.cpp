@@ -100,7 +100,7 @@ std::vector<RankReport> collect(SolverState& s) {
       read_polygon(in, s.solution.mesh.polygons[p], s.solution.vertex_states[p],
                    s.solution.texture_factors[p], s.scene.shared.copies[p],
                    s.solution.mesh.polygons.size(),
-                   is_textured(s.solution.hierarchy->triangles, p, s.solution.texture_of(p)));
+                   is_textured(s.solution.hierarchy->triangles, p, s.solution.object_of(p)));
       s.energy.unshot_energy[p] = in.pod<UnshotEnergy>();
       ++received[size_t(r)];
     }

@@ -76,7 +76,7 @@ size_t force_subdivide(SolverState& s, int32_t polygon, const VisibilityBackend&
   if (!factors.empty()) {
     factors.resize(m.vertex_count());
     const Triangles& tris = s.solution.hierarchy->triangles;
-    const TextureMap& texture = s.solution.texture_of(size_t(polygon));
+    const SceneObject& object = s.solution.object_of(size_t(polygon));
     // Each new vertex stands for the smallest leaf it is a corner of.
     std::vector<float> area(m.vertex_count() - made_before, std::numeric_limits<float>::max());
     for_each_leaf(m, [&](uint32_t e) {
@@ -86,7 +86,7 @@ size_t force_subdivide(SolverState& s, int32_t polygon, const VisibilityBackend&
     });
     for (uint32_t v = made_before; v < m.vertex_count(); ++v) {
       factors[v] =
-          texture_factor(tris, size_t(polygon), texture, m.positions[v], area[v - made_before]);
+          texture_factor(tris, size_t(polygon), object, m.positions[v], area[v - made_before]);
     }
   }
   if (s.scene.buried.found && s.options.shadows) {

@@ -121,7 +121,9 @@ constexpr size_t kMaxFused = 32;
 std::vector<Occluder> fuse_occluders(const Hierarchy& h, double margin) {
   std::vector<FlatRegion> regions;
   for (FlatRegion& r : flat_regions(h))
-    if (h.objects[size_t(r.object)].casts_shadows) regions.push_back(std::move(r));
+    // A cut-out hides nothing wholly: light passes its holes.
+    if (h.objects[size_t(r.object)].casts_shadows && !h.objects[size_t(r.object)].cutout)
+      regions.push_back(std::move(r));
   if (regions.empty()) return {};
   std::vector<Aabb> box(regions.size());
   for (size_t r = 0; r < regions.size(); ++r)

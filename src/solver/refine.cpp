@@ -151,7 +151,7 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
             factors.resize(m.vertex_count());
             for (int k = 0; k < n; ++k) {
               factors[created[k].vertex] =
-                  texture_factor(tris, p, s.solution.texture_of(p), m.positions[created[k].vertex],
+                  texture_factor(tris, p, s.solution.object_of(p), m.positions[created[k].vertex],
                                  m.elements[size_t(m.elements[e].first_child)].area);
             }
           }

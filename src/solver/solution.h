@@ -45,8 +45,9 @@ struct Solution {
   const Material& material_of(size_t polygon) const {
     return materials[size_t(hierarchy->triangles.object[polygon])];
   }
-  const TextureMap& texture_of(size_t polygon) const {
-    return hierarchy->objects[size_t(hierarchy->triangles.object[polygon])].base_texture;
+  /// The Pure polygon p belongs to (its texture and cut-out are there).
+  const SceneObject& object_of(size_t polygon) const {
+    return hierarchy->objects[size_t(hierarchy->triangles.object[polygon])];
   }
   /// The reflectance rho of vertex v of polygon p: its material's, times its texture factor.
   Vec3 reflectance(size_t p, uint32_t v) const {

@@ -83,9 +83,9 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   sol.vertex_states.resize(h.triangles.size());
   sol.texture_factors.resize(h.triangles.size());
   tbb::parallel_for(size_t(0), h.triangles.size(), [&](size_t t) {
-    if (is_textured(h.triangles, t, sol.texture_of(t))) {
+    if (is_textured(h.triangles, t, sol.object_of(t))) {
       sol.texture_factors[t] =
-          initial_texture_factors(h.triangles, t, sol.texture_of(t), sol.mesh.polygons[t]);
+          initial_texture_factors(h.triangles, t, sol.object_of(t), sol.mesh.polygons[t]);
     }
   });
   for (size_t t = 0; t < h.triangles.size(); ++t) {

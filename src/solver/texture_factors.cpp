@@ -6,11 +6,11 @@
 
 namespace rad {
 
-bool is_textured(const Triangles& t, size_t p, const TextureMap& texture) {
-  return bool(texture) && p < t.uv.size() && std::isfinite(t.uv[p][0].x);
+bool is_textured(const Triangles& t, size_t p, const SceneObject& o) {
+  return (o.base_texture || o.cutout) && p < t.uv.size() && std::isfinite(t.uv[p][0].x);
 }
 
-Vec3 texture_factor(const Triangles& t, size_t p, const TextureMap& texture, const Vec3& position,
+Vec3 texture_factor(const Triangles& t, size_t p, const SceneObject& o, const Vec3& position,
                     float element_area) {
   const std::array<Vec3, 3>& c = t.corners[p];
   const std::array<Vec2, 3>& uv = t.uv[p];
@@ -23,22 +23,28 @@ Vec3 texture_factor(const Triangles& t, size_t p, const TextureMap& texture, con
   const double wa = 1.0 - wb - wc;
   const Vec2 at = Vec2(float(wa * uv[0].x + wb * uv[1].x + wc * uv[2].x),
                        float(wa * uv[0].y + wb * uv[1].y + wc * uv[2].y));
-  // The element's area in texels: the triangle maps its area to its texture area affinely.
-  const TextureImage& image = *texture.image;
+  // The element's area in the texture's unit square: the triangle maps its area to its texture
+  // area affinely. Its footprint in an image is that times the image's texels.
   const double uv_area = 0.5 *
                          std::abs(double(uv[1].x - uv[0].x) * double(uv[2].y - uv[0].y) -
                                   double(uv[2].x - uv[0].x) * double(uv[1].y - uv[0].y)) *
-                         double(image.width()) * double(image.height());
-  const double texels = double(element_area) * uv_area / double(t.area[p]);
-  const Vec4 s = sample_texture(texture, at, float(std::sqrt(2.0 * texels)));
+                         double(element_area) / double(t.area[p]);
+  auto width_in = [&](const TextureImage& image) {
+    return float(std::sqrt(2.0 * uv_area * double(image.width()) * double(image.height())));
+  };
   Vec3 f(1.0f);
-  for (int k = 0; k < 3; ++k) {
-    if (image.mean[k] > 0.0f) f[k] = s[k] / image.mean[k];
+  if (o.base_texture) {
+    const TextureImage& image = *o.base_texture.image;
+    const Vec4 s = sample_texture(o.base_texture, at, width_in(image));
+    for (int k = 0; k < 3; ++k) {
+      if (image.mean[k] > 0.0f) f[k] = s[k] / image.mean[k];
+    }
   }
+  if (o.cutout) f *= opaque_fraction(o.cutout, at, width_in(*o.cutout.texture.image));
   return f;
 }
 
-std::vector<Vec3> initial_texture_factors(const Triangles& t, size_t p, const TextureMap& texture,
+std::vector<Vec3> initial_texture_factors(const Triangles& t, size_t p, const SceneObject& o,
                                           const PolygonMesh& mesh) {
   std::vector<float> area(mesh.vertex_count(), std::numeric_limits<float>::max());
   for_each_leaf(mesh, [&](uint32_t e) {
@@ -46,8 +52,7 @@ std::vector<Vec3> initial_texture_factors(const Triangles& t, size_t p, const Te
     for (const uint32_t v : el.v) area[v] = std::min(area[v], el.area);
   });
   std::vector<Vec3> f(mesh.vertex_count());
-  for (size_t v = 0; v < f.size(); ++v)
-    f[v] = texture_factor(t, p, texture, mesh.positions[v], area[v]);
+  for (size_t v = 0; v < f.size(); ++v) f[v] = texture_factor(t, p, o, mesh.positions[v], area[v]);
   return f;
 }
 

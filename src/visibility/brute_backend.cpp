@@ -11,7 +11,7 @@ namespace {
 
 class BruteBackend final : public VisibilityBackend {
  public:
-  explicit BruteBackend(const Hierarchy& h) : records_(make_triangle_records(h)) {}
+  explicit BruteBackend(const Hierarchy& h) : records_(make_triangle_records(h, &cutouts_)) {}
 
   BackendKind kind() const override { return BackendKind::Brute; }
 
@@ -24,7 +24,7 @@ class BruteBackend final : public VisibilityBackend {
       uint8_t hit = 0;
       for (const TriangleRecord& r : records_) {
         ++tests;
-        if (segment_hits_triangle(r, s.origin, s.direction)) {
+        if (segment_blocked(r, cutouts_, s.origin, s.direction)) {
           hit = 1;
           break;
         }
@@ -40,7 +40,7 @@ class BruteBackend final : public VisibilityBackend {
   SegmentHit first_hit(const Segment& s, VisibilityStats& stats) const override {
     SegmentHitRecord best;
     for (uint32_t i = 0; i < uint32_t(records_.size()); ++i) {
-      keep_nearer(best, segment_hit_distance(records_[i], s.origin, s.direction), i);
+      keep_nearer(best, segment_block_distance(records_[i], cutouts_, s.origin, s.direction), i);
     }
     stats.rays += 1;
     stats.triangle_tests += records_.size();
@@ -49,6 +49,7 @@ class BruteBackend final : public VisibilityBackend {
   }
 
  private:
+  Cutouts cutouts_;  // before records_, which names them
   std::vector<TriangleRecord> records_;
 };
 

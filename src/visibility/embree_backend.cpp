@@ -35,12 +35,14 @@ struct TraceContext {
   const Vec3* origin;          // per ray id: the original segment
   const Vec3* direction;
   const TriangleRecord* records;
+  const Cutouts* cutouts;
   float clearance;  // margin + a distance far above either test's rounding (see below)
 };
 
 struct GeometryData {
   uint32_t first_triangle;
   float longest_edge;  // of the grown triangles: bounds their altitudes from below
+  bool cutout;         // a cut-out Pure: no hit is sure before its mask is read
 };
 
 // A hit the shared test is certain to confirm needs no test (and no read of its record, the
@@ -70,10 +72,12 @@ void keep_shared_test_hits(const RTCFilterFunctionNArguments* args) {
   const auto* geometry = static_cast<const GeometryData*>(args->geometryUserPtr);
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
-    if (surely_hit(args, i, context->clearance, geometry->longest_edge)) continue;
+    if (!geometry->cutout && surely_hit(args, i, context->clearance, geometry->longest_edge))
+      continue;
     const unsigned id = RTCRayN_id(args->ray, args->N, i);
     const uint32_t t = geometry->first_triangle + RTCHitN_primID(args->hit, args->N, i);
-    if (!segment_hits_triangle(context->records[t], context->origin[id], context->direction[id])) {
+    if (!segment_blocked(context->records[t], *context->cutouts, context->origin[id],
+                         context->direction[id])) {
       args->valid[i] = 0;
     }
   }
@@ -85,6 +89,7 @@ struct NearestContext {
   RTCIntersectContext embree;  // first: Embree hands the filter a pointer to it
   Vec3 origin, direction;
   const TriangleRecord* records;
+  const Cutouts* cutouts;
   SegmentHitRecord best;
   uint64_t tests = 0;
 };
@@ -97,7 +102,9 @@ void keep_nearest_shared_test_hit(const RTCFilterFunctionNArguments* args) {
     const uint32_t t = geometry->first_triangle + RTCHitN_primID(args->hit, args->N, i);
     ++context->tests;
     keep_nearer(context->best,
-                segment_hit_distance(context->records[t], context->origin, context->direction), t);
+                segment_block_distance(context->records[t], *context->cutouts, context->origin,
+                                       context->direction),
+                t);
     args->valid[i] = 0;
   }
 }
@@ -140,7 +147,7 @@ class EmbreeBackend final : public VisibilityBackend {
  public:
   EmbreeBackend(const Hierarchy& h, const VisibilityOptions& options)
       : packets_(options.packets),
-        records_(make_triangle_records(h)),
+        records_(make_triangle_records(h, &cutouts_)),
         // 4x the rounding scale of the coordinates (1e-6 of the diagonal, or of the largest
         // coordinate for a scene far from the origin): far above the error of either test, far
         // below the shadow offset (1e-5) and any feature.
@@ -188,7 +195,7 @@ class EmbreeBackend final : public VisibilityBackend {
           indices[3 * i + k] = 3 * i + k;
         }
       }
-      geometry_data_.push_back({o.first_triangle, longest});
+      geometry_data_.push_back({o.first_triangle, longest, bool(o.cutout)});
       rtcSetGeometryUserData(geometry, &geometry_data_.back());
       rtcSetGeometryOccludedFilterFunction(geometry, keep_shared_test_hits);
       rtcSetGeometryIntersectFilterFunction(geometry, keep_nearest_shared_test_hit);
@@ -239,6 +246,7 @@ class EmbreeBackend final : public VisibilityBackend {
     context.origin = s.origin;
     context.direction = s.direction;
     context.records = records_.data();
+    context.cutouts = &cutouts_;
     Vec3 o, d;
     lengthened(s.origin, s.direction, o, d);
     RTCRayHit rh;
@@ -306,6 +314,7 @@ class EmbreeBackend final : public VisibilityBackend {
     TraceContext context;
     rtcInitIntersectContext(&context.embree);
     context.records = records_.data();
+    context.cutouts = &cutouts_;
     context.clearance = clearance();
     for (size_t i = 0; i < segments.size(); ++i) {
       const Segment& s = segments[i];
@@ -357,6 +366,7 @@ class EmbreeBackend final : public VisibilityBackend {
     context.origin = origin;
     context.direction = direction;
     context.records = records_.data();
+    context.cutouts = &cutouts_;
     context.clearance = clearance();
     alignas(64) int valid[kPacket];
     for (size_t begin = 0; begin < n; begin += kPacket) {
@@ -406,6 +416,7 @@ class EmbreeBackend final : public VisibilityBackend {
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   bool packets_;
+  Cutouts cutouts_;                          // before records_, which names them
   std::vector<TriangleRecord> records_;      // the shared test's triangles, by triangle id
   std::vector<GeometryData> geometry_data_;  // per Embree geometry; reserved, never moves
   float margin_;

@@ -30,7 +30,8 @@ constexpr uint32_t kNoTriangle = ~0u;
 
 class GridBackend final : public VisibilityBackend {
  public:
-  GridBackend(const Hierarchy& h, double cells_per_triangle) : records_(make_triangle_records(h)) {
+  GridBackend(const Hierarchy& h, double cells_per_triangle)
+      : records_(make_triangle_records(h, &cutouts_)) {
     Vec3 scene_abs = glm::max(glm::abs(h.bounds.lo), glm::abs(h.bounds.hi));
     float scene_size =
         h.bounds.empty() ? 0.0f : glm::max(h.bounds.diagonal(), max_component(scene_abs));
@@ -60,7 +61,7 @@ class GridBackend final : public VisibilityBackend {
       const Segment& s = segments[i];
       if (cached != kNoTriangle) {
         ++c.tests;
-        if (segment_hits_triangle(records_[cached], s.origin, s.direction)) {
+        if (segment_blocked(records_[cached], cutouts_, s.origin, s.direction)) {
           out[i] = 1;
           ++c.occluded;
           continue;
@@ -88,7 +89,7 @@ class GridBackend final : public VisibilityBackend {
     walk_objects(o, d, c, [&](const UniformGrid& grid, const GridCell& cell) {
       for (uint32_t t : grid.cell(cell.index)) {
         ++c.tests;
-        keep_nearer(best, segment_hit_distance(records_[t], o, d), t);
+        keep_nearer(best, segment_block_distance(records_[t], cutouts_, o, d), t);
       }
       return false;
     });
@@ -177,12 +178,16 @@ class GridBackend final : public VisibilityBackend {
       if (first_packet != UniformGrid::kNoPackets) {
         // A dense cell: eight triangles per test, no mailbox (a repeated lane costs nothing).
         for (uint32_t at = 0; at < ids.size(); at += TrianglePacket::kLanes) {
-          const uint32_t lanes =
+          uint32_t lanes =
               segment_hits_packet(grid.packet(first_packet + at / TrianglePacket::kLanes), o, d);
           c.tests += std::min<size_t>(TrianglePacket::kLanes, ids.size() - at);
-          if (lanes != 0) {
-            hit = ids[at + uint32_t(std::countr_zero(lanes))];
-            return true;
+          // A lane met on a cut-out's hole is no hit: the next lane may be.
+          for (; lanes != 0; lanes &= lanes - 1) {
+            const uint32_t t = ids[at + uint32_t(std::countr_zero(lanes))];
+            if (records_[t].cutout == 0 || cutout_opaque(records_[t], cutouts_, o, d)) {
+              hit = t;
+              return true;
+            }
           }
         }
         return false;
@@ -192,7 +197,7 @@ class GridBackend final : public VisibilityBackend {
         if (slot == t) continue;
         slot = t;
         ++c.tests;
-        if (segment_hits_triangle(records_[t], o, d)) {
+        if (segment_blocked(records_[t], cutouts_, o, d)) {
           hit = t;
           return true;
         }
@@ -202,6 +207,7 @@ class GridBackend final : public VisibilityBackend {
     return hit;
   }
 
+  Cutouts cutouts_;  // before records_, which names them
   std::vector<TriangleRecord> records_;
   std::vector<Node> nodes_;
   std::vector<UniformGrid> grids_;

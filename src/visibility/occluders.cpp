@@ -144,6 +144,8 @@ std::optional<Hierarchy> merge_flat_regions(const Hierarchy& h) {
   for (size_t r = 0; r + 1 < starts.size(); ++r) {
     tris.assign(flat.begin() + starts[r], flat.begin() + starts[r + 1]);
     if (tris.size() < 3) continue;
+    // A cut-out keeps its triangles: their texture coordinates say where its holes are.
+    if (h.objects[size_t(t.object[tris.front()])].cutout) continue;
     std::optional<FlatRegion> surface = region_surface(h, v, tris);
     if (!surface || surface->triangles.size() >= tris.size()) continue;
     std::vector<std::array<Vec3, 3>> out = std::move(surface->triangles);
@@ -159,7 +161,9 @@ std::optional<Hierarchy> merge_flat_regions(const Hierarchy& h) {
   m.bounds = h.bounds, m.dropped_degenerate = h.dropped_degenerate;
   std::vector<uint32_t> new_start(t.size() + 1, 0);
   Triangles& out = m.triangles;
-  auto add = [&](const std::array<Vec3, 3>& c, const Vec3& normal, float area, int32_t object) {
+  auto add = [&](const std::array<Vec3, 3>& c, const Vec3& normal, float area, int32_t object,
+                 const std::array<Vec2, 3>& uv) {
+    if (!t.uv.empty()) out.uv.push_back(uv);
     out.corners.push_back(c);
     out.normal.push_back(normal);
     out.area.push_back(area);
@@ -169,11 +173,12 @@ std::optional<Hierarchy> merge_flat_regions(const Hierarchy& h) {
     new_start[i] = uint32_t(out.size());
     const int32_t r = merged_into[i];
     if (r < 0) {
-      add(t.corners[i], t.normal[i], t.area[i], t.object[i]);
+      add(t.corners[i], t.normal[i], t.area[i], t.object[i],
+          t.uv.empty() ? kNoTextureCoordinates : t.uv[i]);
     } else if (lowest[size_t(r)] == i) {
       for (const auto& c : replacement[size_t(r)]) {
         const Vec3 n = glm::cross(c[1] - c[0], c[2] - c[0]);
-        add(c, glm::normalize(n), 0.5f * glm::length(n), t.object[i]);
+        add(c, glm::normalize(n), 0.5f * glm::length(n), t.object[i], kNoTextureCoordinates);
       }
     }
   }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <type_traits>
@@ -35,7 +36,7 @@ struct alignas(16) TriangleRecord {
   Vec3 normal{0.0f};  // n = e_a × e_b, unnormalised
   float plane_offset = 0.0f;
   Vec3 s_a{0.0f};
-  float pad0 = 0.0f;
+  uint32_t cutout = 0;  // a cut-out triangle: 1 + its index in the backend's Cutouts; else 0
   Vec3 s_b{0.0f};
   float pad1 = 0.0f;
   Vec3 c{0.0f};
@@ -59,15 +60,39 @@ inline TriangleRecord make_triangle_record(const std::array<Vec3, 3>& t) {
   return r;
 }
 
+/// The cut-out triangles a backend traces: each one's texture coordinates (at a, b, c) and its
+/// Pure's mask (copied: a backend keeps nothing of the hierarchy it was built from).
+struct Cutouts {
+  struct Triangle {
+    std::array<Vec2, 3> uv;
+    uint32_t mask;
+  };
+  std::vector<AlphaMask> masks;
+  std::vector<Triangle> triangles;
+};
+
 /// Records for every triangle of the hierarchy, same indices. A triangle whose object casts no
 /// shadows (design §8) gets the all-zero record, which no segment hits: every backend asks this
-/// one test, so all of them see through it alike.
-inline std::vector<TriangleRecord> make_triangle_records(const Hierarchy& h) {
+/// one test, so all of them see through it alike. With `cutouts`, a triangle of a cut-out Pure
+/// with texture coordinates gets an entry there, which its record names.
+inline std::vector<TriangleRecord> make_triangle_records(const Hierarchy& h,
+                                                         Cutouts* cutouts = nullptr) {
   const Triangles& triangles = h.triangles;
   std::vector<TriangleRecord> out(triangles.size());
+  std::vector<int64_t> mask_of(h.objects.size(), -1);
   for (size_t i = 0; i < triangles.size(); ++i) {
-    if (h.objects[size_t(triangles.object[i])].casts_shadows) {
-      out[i] = make_triangle_record(triangles.corners[i]);
+    const size_t object = size_t(triangles.object[i]);
+    const SceneObject& o = h.objects[object];
+    if (!o.casts_shadows) continue;
+    out[i] = make_triangle_record(triangles.corners[i]);
+    if (cutouts && o.cutout && i < triangles.uv.size() && std::isfinite(triangles.uv[i][0].x) &&
+        out[i].normal != Vec3(0.0f)) {
+      if (mask_of[object] < 0) {
+        mask_of[object] = int64_t(cutouts->masks.size());
+        cutouts->masks.push_back(o.cutout);
+      }
+      cutouts->triangles.push_back({triangles.uv[i], uint32_t(mask_of[object])});
+      out[i].cutout = uint32_t(cutouts->triangles.size());
     }
   }
   return out;
@@ -150,6 +175,38 @@ inline float segment_hit_distance(const TriangleRecord& r, const Vec3& o, const 
   const float beta = qx * r.s_b.x + qy * r.s_b.y + qz * r.s_b.z;
   const bool hit = (alpha >= 0.0f) & (beta >= 0.0f) & (alpha + beta <= 1.0f);
   return hit ? t : std::numeric_limits<float>::infinity();
+}
+
+/// Where the segment meets cut-out triangle r (which segment_hits_triangle says it meets), is
+/// the mask opaque? Barycentrics by the same expressions as that test: α weights corner a, β
+/// corner b.
+inline bool cutout_opaque(const TriangleRecord& r, const Cutouts& cutouts, const Vec3& o,
+                          const Vec3& d) {
+  const Cutouts::Triangle& c = cutouts.triangles[r.cutout - 1];
+  const float denom = r.normal.x * d.x + r.normal.y * d.y + r.normal.z * d.z;
+  const float num = r.plane_offset - (r.normal.x * o.x + r.normal.y * o.y + r.normal.z * o.z);
+  const float t = num / denom;
+  const float qx = o.x + t * d.x - r.c.x, qy = o.y + t * d.y - r.c.y, qz = o.z + t * d.z - r.c.z;
+  const float alpha = qx * r.s_a.x + qy * r.s_a.y + qz * r.s_a.z;
+  const float beta = qx * r.s_b.x + qy * r.s_b.y + qz * r.s_b.z;
+  const Vec2 uv = c.uv[0] * alpha + c.uv[1] * beta + c.uv[2] * (1.0f - alpha - beta);
+  return opaque_at(cutouts.masks[c.mask], uv);
+}
+
+/// The shadow test every backend makes: the segment meets the triangle, and where a cut-out
+/// triangle is met its mask is opaque.
+inline bool segment_blocked(const TriangleRecord& r, const Cutouts& cutouts, const Vec3& origin,
+                            const Vec3& direction) {
+  return segment_hits_triangle(r, origin, direction) &&
+         (r.cutout == 0 || cutout_opaque(r, cutouts, origin, direction));
+}
+
+/// segment_hit_distance for first_hit, through a cut-out's holes alike: +inf where it passes.
+inline float segment_block_distance(const TriangleRecord& r, const Cutouts& cutouts,
+                                    const Vec3& origin, const Vec3& direction) {
+  const float t = segment_hit_distance(r, origin, direction);
+  if (r.cutout == 0 || t == std::numeric_limits<float>::infinity()) return t;
+  return cutout_opaque(r, cutouts, origin, direction) ? t : std::numeric_limits<float>::infinity();
 }
 
 /// Keeps the nearer of two hits (the lower triangle index at the same t); t = +inf: a miss.

@@ -117,7 +117,8 @@ TEST(Texture, WhatIsNotAnImageIsNoTexture) {
 
 // A unit quad with texture coordinates, its material's base texture (sampler: clamp in s,
 // nearest) read through KHR_texture_transform.
-std::string textured_quad_gltf(const std::string& image, bool double_sided = false) {
+std::string textured_quad_gltf(const std::string& image, bool double_sided = false,
+                               const std::string& alpha_mode = "OPAQUE") {
   std::string buf;
   const float p[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
   buf.append(reinterpret_cast<const char*>(p), sizeof p);
@@ -130,7 +131,8 @@ std::string textured_quad_gltf(const std::string& image, bool double_sided = fal
     "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2,
                                 "material": 0}]}],
     "materials": [{"name": "Wood", "doubleSided": )" +
-         std::string(double_sided ? "true" : "false") + R"(,
+         std::string(double_sided ? "true" : "false") + R"(, "alphaMode": ")" + alpha_mode +
+         R"(", "alphaCutoff": 0.625,
        "pbrMetallicRoughness": {"baseColorFactor": [0.5, 1, 1, 1],
        "baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform":
           {"offset": [0, 1], "rotation": 1.5707963267948966, "scale": [0.5, 0.5]}}}}}],
@@ -201,6 +203,41 @@ TEST(TextureCoordinates, ObjTurnsVtUpsideDownToTheImagesRows) {
   EXPECT_EQ(g.triangle_uvs[1][1], Vec2(1.0f, 0.0f));
   EXPECT_TRUE(m.materials[g.material[1]].base_texture);
   EXPECT_FALSE(m.materials[g.material[0]].base_texture);
+}
+
+TEST(Cutouts, GltfMaskAndBlendCutOutTheBaseTexturesAlpha) {
+  EXPECT_FALSE(parse_gltf(textured_quad_gltf(four_by_two()), "q.gltf", "").materials[0].cutout);
+  const Model mask = parse_gltf(textured_quad_gltf(four_by_two(), false, "MASK"), "q.gltf", "");
+  ASSERT_TRUE(mask.materials[0].cutout);
+  EXPECT_EQ(mask.materials[0].cutout.cutoff, 0.625f);
+  EXPECT_EQ(mask.materials[0].cutout.texture.image, mask.materials[0].base_texture.image)
+      << "the base colour texture's alpha, decoded once";
+  const Model blend = parse_gltf(textured_quad_gltf(four_by_two(), false, "BLEND"), "q.gltf", "");
+  ASSERT_TRUE(blend.materials[0].cutout);
+  EXPECT_EQ(blend.materials[0].cutout.cutoff, 0.5f) << "blending taken as a cut at one half";
+  // The texel with alpha 128/255 is a hole at 0.625, not at 0.5.
+  const Vec2 texel(3.5f / 4, 0.75f);
+  EXPECT_FALSE(opaque_at(mask.materials[0].cutout, texel));
+  EXPECT_TRUE(opaque_at(blend.materials[0].cutout, texel));
+  EXPECT_TRUE(opaque_at(mask.materials[0].cutout, Vec2(0.5f / 4, 0.75f)));
+}
+
+TEST(Cutouts, ObjMapDCutsOutByItsAlphaOrItsGreyLevel) {
+  const fs::path dir = fs::temp_directory_path() / ("rad_cutout_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  std::vector<unsigned char> grey = {255, 255, 255, 255, 0, 0, 0, 255};  // white, black
+  std::ofstream(dir / "mask.png", std::ios::binary) << png(2, 1, grey);
+  std::ofstream(dir / "leaf.mtl") << "newmtl Leaf\nKd 0.2 0.6 0.2\nmap_d mask.png\n";
+  std::ofstream(dir / "leaf.obj") << "mtllib leaf.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\n"
+                                     "vt 0 0\nvt 1 0\nvt 1 1\nusemtl Leaf\nf 1/1 2/2 3/3\n";
+  const Model m = read_obj_file((dir / "leaf.obj").string(), SourceLoc{});
+  fs::remove_all(dir);
+  const AlphaMask& cut = m.materials[0].cutout;
+  ASSERT_TRUE(cut);
+  EXPECT_TRUE(cut.from_red) << "no alpha in the image: its grey level";
+  EXPECT_TRUE(opaque_at(cut, Vec2(0.1f, 0.5f)));
+  EXPECT_FALSE(opaque_at(cut, Vec2(0.9f, 0.5f)));
+  EXPECT_EQ(m.groups[0].triangle_uvs.size(), 1u) << "its coordinates are kept";
 }
 
 TEST(TwoSidedModels, AGltfDoubleSidedMaterialFacesBothWaysWithItsTexture) {

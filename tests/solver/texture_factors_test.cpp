@@ -115,9 +115,9 @@ TEST(TextureFactors, AVertexReadsItsTexelWhenSmallAndTheMeanWhenItCoversTheImage
   const SceneDescription d = room(checker, true);
   const Hierarchy h = build_hierarchy(d);
   const size_t floor = h.triangles.size() - 2;
-  ASSERT_TRUE(is_textured(h.triangles, floor, h.objects.back().base_texture));
-  ASSERT_FALSE(is_textured(h.triangles, 0, h.objects.front().base_texture));
-  const TextureMap& t = h.objects.back().base_texture;
+  ASSERT_TRUE(is_textured(h.triangles, floor, h.objects.back()));
+  ASSERT_FALSE(is_textured(h.triangles, 0, h.objects.front()));
+  const SceneObject& t = h.objects.back();
   // The middle of square (0, 0), light; of square (1, 0), dark. A tiny element reads the texel.
   const Vec3 light = texture_factor(h.triangles, floor, t, {0.125f, 0, 0.125f}, 1e-6f);
   const Vec3 dark = texture_factor(h.triangles, floor, t, {0.375f, 0, 0.125f}, 1e-6f);
@@ -139,7 +139,7 @@ TEST(TextureFactors, RegroupingKeepsTheTexturesAndTheirCoordinates) {
     ASSERT_EQ(r.triangles.uv.size(), r.triangles.size()) << to_string(mode);
     size_t textured = 0;
     for (size_t t = 0; t < r.triangles.size(); ++t) {
-      const TextureMap& m = r.objects[size_t(r.triangles.object[t])].base_texture;
+      const SceneObject& m = r.objects[size_t(r.triangles.object[t])];
       if (!is_textured(r.triangles, t, m)) continue;
       ++textured;
       // The coordinates are the floor's: u = x, v = z at every corner.
