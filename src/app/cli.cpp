@@ -170,7 +170,10 @@ struct Solving {
 // writes a solution. `images`: whether the mode takes --image (rad batch names its by --formats).
 struct Showing {
   // Every default comes from the struct that owns it (OutputOptions, Camera).
-  std::string tonemap = to_string(OutputOptions{}.tonemap), camera;
+  std::string tonemap = to_string(OutputOptions{}.tonemap), camera, false_colour;
+  double false_colour_max = 0.0;
+  int false_colour_log = 0;
+  CLI::Option *max_option = nullptr, *log_option = nullptr;
   std::string size =
       fmt::format("{}x{}", OutputOptions{}.image_width, OutputOptions{}.image_height);
 
@@ -199,6 +202,19 @@ struct Showing {
                     "up +y (default: frames the scene from its open side; fov {})",
                     kDefaultFovDeg));
     app.add_option("--size", size, "Image size WxH in pixels")->capture_default_str();
+    app.add_option("--false-colour", false_colour,
+                   "lux: images show the illuminance (the luminance of the light arriving) in "
+                   "false colour, dark blue to red, with a legend on their left (after "
+                   "Radiance's falsecolor)");
+    max_option =
+        app.add_option("--false-colour-max", false_colour_max,
+                       "Top of the false colour scale, lux (default: a round number above 99% of "
+                       "the vertices' illuminance)");
+    log_option =
+        app.add_option("--false-colour-log", false_colour_log,
+                       fmt::format("A logarithmic false colour scale over this many decades below "
+                                   "its top (1 to {}; default linear from 0)",
+                                   kMaxFalseColourDecades));
   }
   void apply(OutputOptions& o) const {
     try {
@@ -211,6 +227,7 @@ struct Showing {
     } catch (const Error& e) {
       throw CLI::ValidationError("--camera", e.message());
     }
+    apply_false_colour(o);
     char x = 0, end = 0;
     if (std::sscanf(size.c_str(), "%d%c%d%c", &o.image_width, &x, &o.image_height, &end) != 3 ||
         x != 'x' || o.image_width < 1 || o.image_height < 1 || o.image_width > kMaxImageSize ||
@@ -218,6 +235,35 @@ struct Showing {
       throw CLI::ValidationError(
           "--size", fmt::format("expected WxH in pixels (1 to {}), got {}", kMaxImageSize, size));
     }
+  }
+  // --false-colour and its scale; the scale's options alone would change nothing.
+  void apply_false_colour(OutputOptions& o) const {
+    if (false_colour.empty()) {
+      for (const CLI::Option* given : {max_option, log_option}) {
+        if (given->count() > 0) {
+          throw CLI::ValidationError(given->get_name(),
+                                     "sets the false colour scale: add --false-colour lux");
+        }
+      }
+      return;
+    }
+    if (false_colour != "lux") {
+      throw CLI::ValidationError("--false-colour",
+                                 "expected lux (the illuminance), got '" + false_colour + "'");
+    }
+    if (max_option->count() > 0 && !(false_colour_max > 0.0 && std::isfinite(false_colour_max))) {
+      throw CLI::ValidationError(
+          "--false-colour-max",
+          fmt::format("expected a positive number of lux, got {}", false_colour_max));
+    }
+    if (log_option->count() > 0 &&
+        (false_colour_log < 1 || false_colour_log > kMaxFalseColourDecades)) {
+      throw CLI::ValidationError("--false-colour-log",
+                                 fmt::format("expected 1 to {} decades, got {}",
+                                             kMaxFalseColourDecades, false_colour_log));
+    }
+    o.false_colour = true;
+    o.false_colour_scale = {.max = false_colour_max, .log_decades = false_colour_log};
   }
 };
 

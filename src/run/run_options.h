@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "export/camera.h"
+#include "export/false_colour.h"
 #include "export/tonemap.h"
 #include "hierarchy/auto_hierarchy.h"
 #include "scene/model_scene.h"
@@ -41,6 +42,10 @@ struct OutputOptions {
   bool ambient = true;  // display colours include Cohen's ambient term
   ToneCurve tonemap = ToneCurve::Clamp;
   float exposure = 0.0f;  // stops added to the automatic exposure
+  // --false-colour lux: every image shows the illuminance (the luminance of H) in false colour
+  // with a legend instead of the tone-mapped radiosity.
+  bool false_colour = false;
+  FalseColourOptions false_colour_scale;
 };
 
 }  // namespace rad

@@ -50,6 +50,9 @@ uint64_t job_fingerprint(const RunOptions& run, const SceneJob& job, const Hiera
       .add(job.outputs.ambient)
       .add(job.outputs.tonemap)
       .add(job.outputs.exposure);
+  f.add(job.outputs.false_colour)
+      .add(job.outputs.false_colour_scale.max)
+      .add(job.outputs.false_colour_scale.log_decades);
   f.add(job.outputs.image_width).add(job.outputs.image_height).add(job.outputs.camera.has_value());
   if (job.outputs.camera) f.add(*job.outputs.camera);
   f.add(std::string_view(job.outputs.mesh)).add(uint64_t(job.outputs.images.size()));

@@ -4,11 +4,43 @@
 
 #include "core/error.h"
 #include "export/camera.h"
+#include "export/false_colour.h"
 #include "export/image_file.h"
 #include "export/image_render.h"
 #include "export/mesh_file.h"
 
 namespace rad {
+
+namespace {
+
+// An image a person would take for a failure: next to no pixel above black once tone mapped.
+void warn_if_black(const Image& image, const ToneMap& tone, const std::string& path,
+                   const Camera& camera) {
+  size_t lit = 0;
+  for (const Vec3& p : image.pixels) lit += max_component(tone_map(p, tone)) > 2.0f / 255.0f;
+  if (lit * 100 >= image.pixels.size()) return;
+  warn(SourceLoc{path, 0, 0},
+       fmt::format("the image is almost black ({} of {} pixels lit): the camera ({}) sees no "
+                   "lit surface, or only surfaces from behind; give --camera "
+                   "EYE_X,EYE_Y,EYE_Z,TARGET_X,TARGET_Y,TARGET_Z[,FOV] to look elsewhere",
+                   lit, image.pixels.size(), camera_spec(camera)));
+}
+
+// --false-colour lux: the luminance of the light arriving at each vertex, in false colour.
+Image false_colour_image(const OutputMesh& mesh, const OutputOptions& o, const Camera& camera,
+                         const RenderOptions& ro,
+                         const std::function<void(const std::string&)>& say) {
+  std::vector<float> lux(mesh.irradiance.size());
+  for (size_t v = 0; v < lux.size(); ++v) lux[v] = luminance_of(mesh.irradiance[v]);
+  const FalseColourScale scale = make_false_colour_scale(lux, o.false_colour_scale);
+  say(fmt::format(
+      "False colour: illuminance 0 to {} lx{}{}", format_scale_value(scale.max),
+      scale.log_decades ? fmt::format(", logarithmic over {} decades", scale.log_decades) : "",
+      o.false_colour_scale.max > 0.0 ? "" : " (set it with --false-colour-max)"));
+  return render_false_colour(mesh.position(), lux, mesh.indices(), camera, ro, scale, "lx");
+}
+
+}  // namespace
 
 void check_outputs(const OutputOptions& o) {
   if (!o.mesh.empty()) check_writable(o.mesh), check_mesh_extension(o.mesh);
@@ -32,20 +64,18 @@ std::optional<Camera> write_outputs(const OutputMesh& mesh, const OutputOptions&
                                  : default_camera(mesh.position(), mesh.indices(),
                                                   float(ro.width) / float(ro.height));
   say(fmt::format("Camera: --camera {}{}", camera_spec(camera), o.camera ? "" : " (the default)"));
-  const Image image = render_image(mesh.position(), mesh.display, mesh.indices(), camera, ro);
-  // An image a person would take for a failure: next to no pixel above black once tone mapped.
-  size_t lit = 0;
-  for (const Vec3& p : image.pixels) lit += max_component(tone_map(p, tone)) > 2.0f / 255.0f;
-  if (lit * 100 < image.pixels.size()) {
-    warn(SourceLoc{o.images.front(), 0, 0},
-         fmt::format("the image is almost black ({} of {} pixels lit): the camera ({}) sees no "
-                     "lit surface, or only surfaces from behind; give --camera "
-                     "EYE_X,EYE_Y,EYE_Z,TARGET_X,TARGET_Y,TARGET_Z[,FOV] to look elsewhere",
-                     lit, image.pixels.size(), camera_spec(camera)));
+  Image image;
+  ToneMap shown = tone;
+  if (o.false_colour) {
+    image = false_colour_image(mesh, o, camera, ro, say);
+    shown = ToneMap{.scale = 1.0f, .curve = ToneCurve::Clamp};  // the palette as it is
+  } else {
+    image = render_image(mesh.position(), mesh.display, mesh.indices(), camera, ro);
+    warn_if_black(image, tone, o.images.front(), camera);
   }
   for (const std::string& path : o.images) {
     say(fmt::format("Writing image {}", path));
-    files.write(path, [&](const std::string& staged) { write_image_file(staged, image, tone); });
+    files.write(path, [&](const std::string& staged) { write_image_file(staged, image, shown); });
   }
   return camera;
 }

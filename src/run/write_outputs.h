@@ -19,7 +19,9 @@ void check_outputs(const OutputOptions& o);
 
 /// Writes o.mesh and every o.images from `mesh`, shown with `tone`, into `files` (which the
 /// caller commits, with any other output of the run); images through o.camera (or
-/// default_camera) at o.image_width x o.image_height. `say` is told each file's name first.
+/// default_camera) at o.image_width x o.image_height, or with o.false_colour the luminance of
+/// the light arriving in false colour with a legend at their left (render_false_colour). `say`
+/// is told each file's name first.
 /// Returns the camera the images were rendered through (none without images).
 std::optional<Camera> write_outputs(const OutputMesh& mesh, const OutputOptions& o,
                                     const ToneMap& tone,

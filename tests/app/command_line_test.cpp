@@ -16,6 +16,8 @@
 #include "app/cli.h"
 #include "core/error.h"
 #include "export/camera.h"
+#include "export/false_colour.h"
+#include "export/tonemap.h"
 
 namespace {
 
@@ -767,6 +769,88 @@ TEST(CommandLine, ADescriptionLitByALightPrintsItsObjectsIlluminance) {
   EXPECT_NEAR(std::stod(json.substr(at + 7)), 100.0, 0.1) << json;
   const std::string ply = read_file(dir / "lamp.ply");
   EXPECT_NE(ply.find("property float irradiance_r"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+
+namespace {
+
+// A PFM image as rad writes it: "PF", width height, -1 (little-endian), rows bottom up.
+struct Pfm {
+  int width = 0, height = 0;
+  std::vector<float> rgb;  // top row first
+  std::array<float, 3> at(int x, int y) const {
+    const size_t i = 3 * (size_t(y) * size_t(width) + size_t(x));
+    return {rgb[i], rgb[i + 1], rgb[i + 2]};
+  }
+};
+
+Pfm read_pfm(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::string magic;
+  float scale = 0.0f;
+  Pfm img;
+  f >> magic >> img.width >> img.height >> scale;
+  f.get();
+  if (magic != "PF" || img.width <= 0 || img.height <= 0) return {};
+  std::vector<float> rows(3 * size_t(img.width) * size_t(img.height));
+  f.read(reinterpret_cast<char*>(rows.data()), std::streamsize(rows.size() * sizeof(float)));
+  img.rgb.resize(rows.size());
+  const size_t row = 3 * size_t(img.width);
+  for (int y = 0; y < img.height; ++y)
+    std::copy_n(rows.begin() + std::ptrdiff_t(size_t(img.height - 1 - y) * row), row,
+                img.rgb.begin() + std::ptrdiff_t(size_t(y) * row));
+  return img;
+}
+
+// --false-colour lux: a black floor under a 500 lx sun straight above shows, on a scale to
+// 1000 lx, the palette's colour halfway up, in rad's images and rad batch's; a legend strip is
+// added on the left. Its options are checked before any work.
+TEST(CommandLine, FalseColourShowsAKnownIlluminanceInThePalettesColourForIt) {
+  const fs::path dir = fs::temp_directory_path() / ("rad_test_false_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "sun.des")
+      << "\"sun on a floor\"\n"
+         "Object \"floor\" Pure { Reflectivity 0 Color <1 1 1> Emission 0\n"
+         "  Data { <-2 0 -2> <-2 0 2> <2 0 2>  <-2 0 -2> <2 0 2> <2 0 -2> } }\n"
+         "Object \"sun\" Light { Type Directional Direction <0 -1 0> Intensity 500 }\n";
+  const std::string view = " --camera 0,3,-0.5,0,0,0,30 --size 64x64 --false-colour lux";
+  const std::string scale = " --false-colour-max 1000";
+  RadRun r =
+      run_rad((dir / "sun.des").string() + " --image " + (dir / "sun.pfm").string() + view + scale);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("False colour: illuminance 0 to 1000 lx"), std::string::npos) << r.out;
+  const rad::Vec3 half = rad::false_colour_display(0.5f);
+  const auto expect_half = [&](const fs::path& image) {
+    const Pfm img = read_pfm(image);
+    ASSERT_EQ(img.height, 64) << image;
+    ASSERT_GT(img.width, 64) << "no legend strip in " << image;
+    const std::array<float, 3> centre = img.at(img.width - 32, 32);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(rad::srgb_encode(centre[size_t(k)]), half[k], 1e-3) << image << " channel " << k;
+    }
+  };
+  expect_half(dir / "sun.pfm");
+  r = run_rad("batch " + (dir / "batch").string() + " " + (dir / "sun.des").string() +
+              " --formats pfm -q" + view + scale);
+  ASSERT_EQ(r.code, 0) << r.err;
+  expect_half(dir / "batch" / "sun.pfm");
+  // Without --false-colour-max the scale tops at a round number above the floor's 500 lx.
+  r = run_rad((dir / "sun.des").string() + " --image " + (dir / "auto.pfm").string() + view);
+  EXPECT_NE(r.out.find("illuminance 0 to 500 lx"), std::string::npos) << r.out;
+
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {" --image x.png --false-colour rgb", "--false-colour"},
+      {" --image x.png --false-colour-max 100", "--false-colour lux"},
+      {" --image x.png --false-colour lux --false-colour-max -5", "--false-colour-max"},
+      {" --image x.png --false-colour lux --false-colour-log 20", "--false-colour-log"},
+  };
+  for (const auto& [args, says] : refused) {
+    r = run_rad((dir / "sun.des").string() + args);
+    EXPECT_EQ(r.code, rad::kExitUsage) << args;
+    EXPECT_NE(r.err.find(says), std::string::npos) << args << "\n" << r.err;
+  }
   fs::remove_all(dir);
 }
 
