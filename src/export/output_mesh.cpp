@@ -3,8 +3,44 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace rad {
+
+namespace {
+
+/// Texture coordinates at `x` on triangle p: its barycentric coordinates there (by sub-triangle
+/// areas, in double, as the solver's texture factors take them) applied to the corners' own.
+Vec2 uv_at(const Triangles& t, size_t p, const Vec3& x) {
+  const std::array<Vec2, 3>& uv = t.uv[p];
+  if (!std::isfinite(uv[0].x)) return Vec2(0.0f);
+  const std::array<Vec3, 3>& c = t.corners[p];
+  const DVec3 a(c[0]), b(c[1]), d(c[2]), y(x);
+  const DVec3 n = glm::cross(b - a, d - a);
+  const double n2 = glm::dot(n, n);
+  const double wb = glm::dot(glm::cross(y - a, d - a), n) / n2;
+  const double wc = glm::dot(glm::cross(b - a, y - a), n) / n2;
+  const double wa = 1.0 - wb - wc;
+  return Vec2(float(wa * uv[0].x + wb * uv[1].x + wc * uv[2].x),
+              float(wa * uv[0].y + wb * uv[1].y + wc * uv[2].y));
+}
+
+/// Polygon p's base-colour texture as the outputs carry it, or none: without a texture or
+/// without coordinates it shows its material's colour.
+bool output_texture(const Triangles& t, size_t p, const SceneObject& o, OutputTexture& out) {
+  if (!o.base_texture || t.uv.empty() || !is_textured(t, p, o)) return false;
+  out = OutputTexture{o.base_texture};
+  // A mask read from the base texture's own alpha (glTF MASK) travels with it; an OBJ map_d
+  // image is another file, which the outputs do not carry.
+  if (o.cutout && o.cutout.texture.image == o.base_texture.image && !o.cutout.from_red) {
+    out.mask = true;
+    out.alpha_scale = o.cutout.scale;
+    out.cutoff = o.cutout.cutoff;
+  }
+  return true;
+}
+
+}  // namespace
 
 std::shared_ptr<const MeshGeometry> OutputMeshBuilder::update(const SolverState& s, bool* changed) {
   const std::vector<PolygonMesh>& polys = s.solution.mesh.polygons;
@@ -51,6 +87,18 @@ std::shared_ptr<const MeshGeometry> OutputMeshBuilder::update(const SolverState&
   *changed = any;
   if (!any) return geometry_;
   auto g = std::make_shared<MeshGeometry>();
+  polygon_texture_.clear();
+  if (!tris.uv.empty()) {
+    polygon_texture_.assign(polys.size(), -1);
+    for (size_t p = 0; p < polys.size(); ++p) {
+      OutputTexture t;
+      if (!output_texture(tris, p, s.solution.object_of(p), t)) continue;
+      auto at = std::find(g->textures.begin(), g->textures.end(), t);
+      if (at == g->textures.end()) at = g->textures.insert(at, t);
+      polygon_texture_[p] = int32_t(at - g->textures.begin());
+    }
+    if (g->textures.empty()) polygon_texture_.clear();
+  }
   size_t nv = 0, ni = 0;
   for (const Polygon& c : polygons_) {
     nv += c.vertices + c.faces.centroids.size() + c.faces.seam.size();
@@ -59,6 +107,8 @@ std::shared_ptr<const MeshGeometry> OutputMeshBuilder::update(const SolverState&
   g->position.reserve(nv);
   g->indices.reserve(ni);
   g->face_polygon.reserve(ni / 3);
+  if (!tris.uv.empty()) g->uv.reserve(nv);
+  if (!g->textures.empty()) g->face_texture.reserve(ni / 3);
   for (size_t p = 0; p < polys.size(); ++p) {
     const PolygonMesh& m = polys[p];
     const PolygonFaces& f = polygons_[p].faces;
@@ -70,6 +120,15 @@ std::shared_ptr<const MeshGeometry> OutputMeshBuilder::update(const SolverState&
     for (const VertexRef& r : f.seam) g->position.push_back(polys[r.polygon].positions[r.vertex]);
     for (uint32_t i : f.triangles) g->indices.push_back(base + i);
     g->face_polygon.insert(g->face_polygon.end(), f.triangles.size() / 3, int32_t(p));
+    if (!tris.uv.empty()) {
+      // Every vertex, seams included, maps through this polygon's own triangle: its faces show
+      // this polygon's texture.
+      for (size_t v = base; v < g->position.size(); ++v)
+        g->uv.push_back(uv_at(tris, p, g->position[v]));
+    }
+    if (!g->textures.empty()) {
+      g->face_texture.insert(g->face_texture.end(), f.triangles.size() / 3, polygon_texture_[p]);
+    }
   }
   geometry_ = std::move(g);
   return geometry_;
@@ -83,6 +142,7 @@ void OutputMeshBuilder::values(const SolverState& s, Vec3 ambient, OutputMesh& o
   const size_t count = geometry_ ? geometry_->position.size() : 0;
   radiosity.reserve(count), display.reserve(count), irradiance.reserve(count);
   const Solution& sol = s.solution;
+  texels(sol, out.texel);
   auto h = [&](size_t p, uint32_t v) { return sol.vertex_states[p][v].irradiance; };
   auto shown = [&](size_t p, uint32_t v) { return sol.reflectance(p, v) * ambient; };
   for (size_t p = 0; p < polygons_.size(); ++p) {
@@ -110,8 +170,51 @@ void OutputMeshBuilder::values(const SolverState& s, Vec3 ambient, OutputMesh& o
   }
 }
 
+void OutputMeshBuilder::texels(const Solution& sol, std::vector<Vec3>& texel) const {
+  texel.clear();
+  if (!geometry_ || geometry_->textures.empty()) return;
+  const std::vector<OutputTexture>& textures = geometry_->textures;
+  texel.reserve(geometry_->position.size());
+  // The texture's colour at vertex v of polygon p (textured by `t`): its reflectance over the
+  // material's, which is the factor times the texture's mean. Where the material reflects
+  // nothing in a channel its vertices' factors are lost, and the mean stands in.
+  auto at = [&](size_t p, uint32_t v, const TextureImage& image) {
+    const Vec3 rho = sol.material_of(p).reflectance, rv = sol.reflectance(p, v);
+    Vec3 t = image.mean;
+    for (int k = 0; k < 3; ++k) {
+      if (rho[k] > 0.0f) t[k] = image.mean[k] * rv[k] / rho[k];
+    }
+    return t;
+  };
+  for (size_t p = 0; p < polygons_.size(); ++p) {
+    const uint32_t n = uint32_t(polygons_[p].vertices);
+    const PolygonFaces& f = polygons_[p].faces;
+    const int32_t k = polygon_texture_[p];
+    if (k < 0) {
+      texel.insert(texel.end(), n + f.centroids.size() + f.seam.size(), Vec3(1.0f));
+      continue;
+    }
+    const TextureImage& image = *textures[size_t(k)].map.image;
+    const size_t first = texel.size();
+    for (uint32_t v = 0; v < n; ++v) texel.push_back(at(p, v, image));
+    for (const auto& c : f.centroids) {
+      texel.push_back((texel[first + c[0]] + texel[first + c[1]] + texel[first + c[2]]) / 3.0f);
+    }
+    for (const VertexRef& r : f.seam) {
+      // A neighbour's vertex on this polygon's edge shows the neighbour's radiosity; where the
+      // neighbour has the same image (a texture running on across the edge) its texel is the
+      // one in that radiosity, else the mean.
+      const int32_t kr = polygon_texture_[r.polygon];
+      texel.push_back(kr >= 0 && textures[size_t(kr)].map.image == textures[size_t(k)].map.image
+                          ? at(r.polygon, r.vertex, image)
+                          : image.mean);
+    }
+  }
+}
+
 void OutputMeshBuilder::reset() {
   polygons_.clear();
+  polygon_texture_.clear();
   geometry_.reset();
 }
 

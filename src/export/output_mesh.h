@@ -11,6 +11,21 @@
 
 namespace rad {
 
+/// A base-colour texture as the outputs carry it: the image (shared with the scene), this use's
+/// sampler, and the cut-out when the material's alpha mask is this image's alpha.
+struct OutputTexture {
+  TextureMap map;
+  bool mask = false;         // cut out where alpha x alpha_scale < cutoff (glTF alphaMode MASK)
+  float alpha_scale = 1.0f;  // the material's alpha factor
+  float cutoff = 0.5f;
+  bool operator==(const OutputTexture& o) const {
+    return map.image == o.map.image && map.sampler.wrap_s == o.map.sampler.wrap_s &&
+           map.sampler.wrap_t == o.map.sampler.wrap_t &&
+           map.sampler.nearest == o.map.sampler.nearest && mask == o.mask &&
+           alpha_scale == o.alpha_scale && cutoff == o.cutoff;
+  }
+};
+
 /// Faces and vertex positions. Each polygon's vertices come first, then its centroids, then the
 /// neighbours' vertices on its edges (see triangulate_leaves); vertices are shared within a
 /// polygon, not across polygons.
@@ -18,6 +33,16 @@ struct MeshGeometry {
   std::vector<Vec3> position;
   std::vector<uint32_t> indices;      // 3 per face
   std::vector<int32_t> face_polygon;  // the polygon each face belongs to
+  /// Per vertex, its texture coordinates: its position in its polygon's original triangle
+  /// mapped through that triangle's coordinates (glTF convention, v down the image); (0, 0) on
+  /// a polygon without coordinates. Empty when no triangle of the scene has any, so an
+  /// untextured scene costs nothing.
+  std::vector<Vec2> uv;
+  /// The base-colour textures of the polygons that have one and coordinates, each once; empty
+  /// when there are none.
+  std::vector<OutputTexture> textures;
+  /// Per face, its index in `textures`, or -1 (no texture); empty when `textures` is.
+  std::vector<int32_t> face_texture;
 };
 
 /// One solved view: geometry (shared between views while subdivision adds nothing) and the
@@ -29,10 +54,19 @@ struct OutputMesh {
   /// The light arriving, H of B = E + rho H (irradiance; illuminance in lux when the scene is
   /// lit by photometric lights in metres), before any surface's reflectance.
   std::vector<Vec3> irradiance;
+  /// With textures (geometry->textures not empty), per vertex: its base texture's linear colour
+  /// as the solver filtered it there (its reflectance over the material's factor, cut-outs'
+  /// opacity included), 1 on a polygon without texture; empty otherwise. display / texel is the
+  /// light a viewer multiplies the texture by (for a surface that does not emit: the material's
+  /// factor times H plus the ambient term).
+  std::vector<Vec3> texel;
 
   const std::vector<Vec3>& position() const { return geometry->position; }
   const std::vector<uint32_t>& indices() const { return geometry->indices; }
   const std::vector<int32_t>& face_polygon() const { return geometry->face_polygon; }
+  const std::vector<Vec2>& uv() const { return geometry->uv; }
+  const std::vector<OutputTexture>& textures() const { return geometry->textures; }
+  const std::vector<int32_t>& face_texture() const { return geometry->face_texture; }
   size_t face_count() const { return geometry->indices.size() / 3; }
 };
 
@@ -46,7 +80,8 @@ class OutputMeshBuilder {
 
   /// Per vertex of the last update's geometry, into out's radiosity, display and irradiance:
   /// radiosity B (centroids: the mean of their three), the displayed value B + rho x `ambient`
-  /// (rho: the polygon's reflectance) and the irradiance H. Leaves out.geometry as it is.
+  /// (rho: the polygon's reflectance) and the irradiance H; with textures, out.texel too.
+  /// Leaves out.geometry as it is.
   void values(const SolverState& s, Vec3 ambient, OutputMesh& out) const;
 
   /// Forgets every polygon (after the state was replaced).
@@ -57,7 +92,11 @@ class OutputMeshBuilder {
     size_t vertices = SIZE_MAX, elements = SIZE_MAX;  // what the faces were made from
     PolygonFaces faces;
   };
+  /// Per vertex of the last update's geometry, into `texel`: OutputMesh::texel.
+  void texels(const Solution& sol, std::vector<Vec3>& texel) const;
+
   std::vector<Polygon> polygons_;
+  std::vector<int32_t> polygon_texture_;  // per polygon its index in textures, or -1
   std::shared_ptr<const MeshGeometry> geometry_;
 };
 

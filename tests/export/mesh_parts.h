@@ -16,8 +16,9 @@ struct MeshParts {
   size_t face_count() const { return indices.size() / 3; }
   OutputMesh view() const {
     OutputMesh m;
-    m.geometry =
-        std::make_shared<const MeshGeometry>(MeshGeometry{position, indices, face_polygon});
+    auto g = std::make_shared<MeshGeometry>();
+    g->position = position, g->indices = indices, g->face_polygon = face_polygon;
+    m.geometry = std::move(g);
     m.radiosity = radiosity;
     m.display = display;
     m.irradiance = irradiance;
