@@ -3,11 +3,13 @@
 #include <tiny_gltf.h>
 
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
+#include "export/texture_png.h"
 #include "export/welded_mesh.h"
 
 namespace rad {
@@ -57,6 +59,106 @@ int add_indices(tinygltf::Model& m, const std::vector<uint32_t>& indices) {
   a.count = indices.size();
   m.accessors.push_back(a);
   return int(m.accessors.size() - 1);
+}
+
+int gltf_wrap(TextureWrap w) {
+  switch (w) {
+    case TextureWrap::ClampToEdge:
+      return TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+    case TextureWrap::MirroredRepeat:
+      return TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT;
+    case TextureWrap::Repeat:
+      break;
+  }
+  return TINYGLTF_TEXTURE_WRAP_REPEAT;
+}
+
+/// One primitive per material over the shared vertex attributes of `base`: the faces without
+/// texture under `plain`, and each texture's faces under a copy of it that shows the texture
+/// (TEXCOORD_0), cut out where the scene's material was. Each image is embedded once, as PNG.
+void add_textured_primitives(tinygltf::Model& m, const OutputMesh& mesh, tinygltf::Primitive base,
+                             const tinygltf::Material& plain, tinygltf::Mesh& gm) {
+  static_assert(sizeof(Vec2) == 2 * sizeof(float), "Vec2 must be two packed floats");
+  tinygltf::Accessor uv;
+  uv.bufferView =
+      add_view(m, mesh.uv().data(), mesh.uv().size() * sizeof(Vec2), TINYGLTF_TARGET_ARRAY_BUFFER);
+  uv.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  uv.type = TINYGLTF_TYPE_VEC2;
+  uv.count = mesh.uv().size();
+  m.accessors.push_back(uv);
+  const int uv_accessor = int(m.accessors.size() - 1);
+
+  const std::vector<OutputTexture>& textures = mesh.textures();
+  std::vector<std::vector<uint32_t>> faces(textures.size() + 1);  // [0]: no texture
+  for (size_t f = 0; f < mesh.face_count(); ++f) {
+    std::vector<uint32_t>& to = faces[size_t(mesh.face_texture()[f] + 1)];
+    to.insert(to.end(), &mesh.indices()[3 * f], &mesh.indices()[3 * f + 3]);
+  }
+  if (!faces[0].empty()) {
+    base.indices = add_indices(m, faces[0]);
+    m.materials.push_back(plain);
+    base.material = int(m.materials.size() - 1);
+    gm.primitives.push_back(base);
+  }
+  std::vector<const TextureImage*> images;  // glTF image i holds images[i]
+  std::vector<TextureSampler> samplers;
+  std::vector<std::pair<int, int>> gltf_textures;  // (image, sampler)
+  auto index_of = [](auto& list, const auto& item, auto same) {
+    for (size_t i = 0; i < list.size(); ++i) {
+      if (same(list[i], item)) return int(i);
+    }
+    list.push_back(item);
+    return int(list.size() - 1);
+  };
+  for (size_t k = 0; k < textures.size(); ++k) {
+    if (faces[k + 1].empty()) continue;
+    const OutputTexture& t = textures[k];
+    const size_t images_before = images.size();
+    const int image = index_of(images, t.map.image.get(), std::equal_to<>());
+    if (images.size() > images_before) {
+      const std::string png = encode_png(*t.map.image);
+      tinygltf::Image gi;
+      gi.bufferView = add_view(m, png.data(), png.size(), 0);
+      gi.mimeType = "image/png";
+      m.images.push_back(gi);
+    }
+    const size_t samplers_before = samplers.size();
+    const int sampler =
+        index_of(samplers, t.map.sampler, [](const TextureSampler& a, const TextureSampler& b) {
+          return a.wrap_s == b.wrap_s && a.wrap_t == b.wrap_t && a.nearest == b.nearest;
+        });
+    if (samplers.size() > samplers_before) {
+      tinygltf::Sampler gs;
+      gs.magFilter =
+          t.map.sampler.nearest ? TINYGLTF_TEXTURE_FILTER_NEAREST : TINYGLTF_TEXTURE_FILTER_LINEAR;
+      gs.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+      gs.wrapS = gltf_wrap(t.map.sampler.wrap_s);
+      gs.wrapT = gltf_wrap(t.map.sampler.wrap_t);
+      m.samplers.push_back(gs);
+    }
+    const size_t textures_before = gltf_textures.size();
+    const int texture = index_of(gltf_textures, std::pair(image, sampler), std::equal_to<>());
+    if (gltf_textures.size() > textures_before) {
+      tinygltf::Texture gt;
+      gt.source = image;
+      gt.sampler = sampler;
+      m.textures.push_back(gt);
+    }
+    tinygltf::Material mat = plain;
+    mat.name = "radiosity on texture " + std::to_string(k) + " (unlit: baseColorTexture x COLOR_0)";
+    mat.pbrMetallicRoughness.baseColorTexture.index = texture;
+    if (t.mask) {
+      mat.alphaMode = "MASK";
+      mat.alphaCutoff = t.cutoff;
+      mat.pbrMetallicRoughness.baseColorFactor[3] = t.alpha_scale;
+    }
+    m.materials.push_back(mat);
+    tinygltf::Primitive prim = base;
+    prim.attributes["TEXCOORD_0"] = uv_accessor;
+    prim.indices = add_indices(m, faces[k + 1]);
+    prim.material = int(m.materials.size() - 1);
+    gm.primitives.push_back(prim);
+  }
 }
 
 void serialise(tinygltf::Model& m, std::ostream& out, bool binary) {
@@ -129,15 +231,24 @@ void write_scene_gltf(std::ostream& out, const Hierarchy& h, bool binary) {
 void write_gltf(std::ostream& out, const OutputMesh& mesh, const ToneMap& tm, bool binary) {
   tinygltf::Model m = empty_model();
   if (!mesh.indices().empty()) {
+    const bool textured = !mesh.textures().empty();
     std::vector<Vec3> colour(mesh.display.size());
     for (size_t v = 0; v < colour.size(); ++v) colour[v] = tone_map(mesh.display[v], tm);
+    if (textured) {
+      // The viewer multiplies: baseColorTexture x COLOR_0 is the display colour at the vertex.
+      for (size_t v = 0; v < colour.size(); ++v) {
+        for (int k = 0; k < 3; ++k) {
+          const float t = mesh.texel[v][k];
+          colour[v][k] = t > 0.0f ? colour[v][k] / t : 0.0f;
+        }
+      }
+    }
 
     tinygltf::Primitive prim;
     prim.mode = TINYGLTF_MODE_TRIANGLES;
     prim.attributes["POSITION"] = add_vec3(m, mesh.position(), true);
     prim.attributes["COLOR_0"] = add_vec3(m, colour, false);
     prim.attributes["_RADIOSITY"] = add_vec3(m, mesh.radiosity, false);
-    prim.indices = add_indices(m, mesh.indices());
 
     tinygltf::Material mat;
     mat.name = "radiosity (unlit vertex colours)";
@@ -145,13 +256,18 @@ void write_gltf(std::ostream& out, const OutputMesh& mesh, const ToneMap& tm, bo
     mat.pbrMetallicRoughness.metallicFactor = 0.0;
     mat.pbrMetallicRoughness.roughnessFactor = 1.0;
     mat.extensions["KHR_materials_unlit"] = tinygltf::Value(tinygltf::Value::Object());
-    m.materials.push_back(mat);
     m.extensionsUsed.push_back("KHR_materials_unlit");
-    prim.material = 0;
 
     tinygltf::Mesh gm;
     gm.name = "radiosity";
-    gm.primitives.push_back(prim);
+    if (!textured) {
+      prim.indices = add_indices(m, mesh.indices());
+      m.materials.push_back(mat);
+      prim.material = 0;
+      gm.primitives.push_back(prim);
+    } else {
+      add_textured_primitives(m, mesh, prim, mat, gm);
+    }
     m.meshes.push_back(gm);
     tinygltf::Node node;
     node.name = "radiosity";

@@ -11,6 +11,11 @@ namespace rad {
 struct MeshFileOptions {
   ToneMap tone;
   bool ascii = false;  // PLY only: text instead of binary
+  /// OBJ only: the name the OBJ will be known by (the path, or the final name when `path` is a
+  /// temporary one, run/output_files.h). Given, an OBJ of a textured mesh names its MTL and
+  /// images after it and writes them beside it (write_obj_materials); empty, the OBJ is written
+  /// alone, without texture coordinates (a download of one file).
+  std::string obj_name;
 };
 
 /// Throws rad::Error if rad cannot write files with this path's extension (checked before

@@ -18,6 +18,7 @@ void put(std::ostream& out, T v) {
 }  // namespace
 
 void write_ply(std::ostream& out, const OutputMesh& m, const ToneMap& tm, bool ascii) {
+  const bool uv = !m.uv().empty();
   out << "ply\n"
       << (ascii ? "format ascii 1.0\n" : "format binary_little_endian 1.0\n")
       << "comment rad radiosity: rgb = display colour (sRGB), radiosity_* = linear radiosity B, "
@@ -27,7 +28,8 @@ void write_ply(std::ostream& out, const OutputMesh& m, const ToneMap& tm, bool a
       << "property uchar red\nproperty uchar green\nproperty uchar blue\n"
       << "property float radiosity_r\nproperty float radiosity_g\nproperty float radiosity_b\n"
       << "property float irradiance_r\nproperty float irradiance_g\nproperty float irradiance_b\n"
-      << "element face " << m.face_count() << "\n"
+      << (uv ? "property float s\nproperty float t\n" : "") << "element face " << m.face_count()
+      << "\n"
       << "property list uchar uint vertex_indices\n"
       << "end_header\n";
   for (size_t v = 0; v < m.position().size(); ++v) {
@@ -36,7 +38,7 @@ void write_ply(std::ostream& out, const OutputMesh& m, const ToneMap& tm, bool a
     const Vec3 &p = m.position()[v], &b = m.radiosity[v];
     const Vec3 h = v < m.irradiance.size() ? m.irradiance[v] : Vec3(0.0f);
     if (ascii) {
-      out << fmt::format("{} {} {} {} {} {} {} {} {} {} {} {}\n", p.x, p.y, p.z, c[0], c[1], c[2],
+      out << fmt::format("{} {} {} {} {} {} {} {} {} {} {} {}", p.x, p.y, p.z, c[0], c[1], c[2],
                          b.x, b.y, b.z, h.x, h.y, h.z);
     } else {
       put(out, p.x), put(out, p.y), put(out, p.z);
@@ -44,6 +46,16 @@ void write_ply(std::ostream& out, const OutputMesh& m, const ToneMap& tm, bool a
       put(out, b.x), put(out, b.y), put(out, b.z);
       put(out, h.x), put(out, h.y), put(out, h.z);
     }
+    if (uv) {
+      // s, t as OBJ's vt and Blender's PLY reader take them: t up the image.
+      const Vec2 st(m.uv()[v].x, 1.0f - m.uv()[v].y);
+      if (ascii) {
+        out << fmt::format(" {} {}", st.x, st.y);
+      } else {
+        put(out, st.x), put(out, st.y);
+      }
+    }
+    if (ascii) out << '\n';
   }
   for (size_t f = 0; f < m.face_count(); ++f) {
     const uint32_t* i = &m.indices()[3 * f];

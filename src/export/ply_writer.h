@@ -10,7 +10,8 @@
 namespace rad {
 
 /// Writes one vertex element (float x y z; uchar red green blue = display colour, tone-mapped
-/// and sRGB-encoded; float radiosity_r/g/b = linear radiosity) and one face element
+/// and sRGB-encoded; float radiosity_r/g/b = linear radiosity; float irradiance_r/g/b = H; with
+/// texture coordinates, float s t, t up the image as in OBJ) and one face element
 /// (list uchar uint vertex_indices). Binary little-endian unless `ascii`.
 void write_ply(std::ostream& out, const OutputMesh& mesh, const ToneMap& tm, bool ascii);
 

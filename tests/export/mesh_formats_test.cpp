@@ -1,5 +1,4 @@
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <tiny_gltf.h>
 
 #include <array>
@@ -11,6 +10,7 @@
 
 #include "core/error.h"
 #include "export/mesh_file.h"
+#include "gltf_validator.h"
 #include "mesh_parts.h"
 
 namespace rad {
@@ -318,35 +318,13 @@ TEST(MeshFormats, GlbStartsWithTheBinaryHeader) {
 
 /// Runs the Khronos glTF validator through node; skips when node or the npm package is missing.
 TEST(MeshFormats, KhronosValidatorReportsNoErrors) {
-  if (std::system("command -v node > /dev/null 2>&1") != 0) {
-    GTEST_SKIP() << "node is not installed: the glTF validator cannot run";
-  }
-  std::string node_path;
-  for (const fs::path& d :
-       {fs::path(RAD_BINARY_DIR) / "npm" / "node_modules",
-        fs::path(RAD_SOURCE_DIR) / "build" / "npm" / "node_modules",
-        fs::path("/usr/local/lib/node_modules"), fs::path("/usr/lib/node_modules")}) {
-    if (fs::exists(d / "gltf-validator")) node_path += (node_path.empty() ? "" : ":") + d.string();
-  }
-  if (node_path.empty()) {
-    GTEST_SKIP() << "the npm package gltf-validator is not installed; install it with: npm "
-                    "install --prefix "
-                 << RAD_BINARY_DIR << "/npm gltf-validator";
-  }
   testing::MeshParts big = sample_mesh();
-  const std::string files = write("v.gltf", big) + " " + write("v.glb", big);
-  const fs::path log = temp_dir() / "validator.log";
-  const std::string cmd = "NODE_PATH='" + node_path +
-                          "' node '" RAD_SOURCE_DIR "/tests/export/gltf_validate.js' " + files +
-                          " > '" + log.string() + "' 2>&1";
-  const int status = std::system(cmd.c_str());
-  std::ifstream in(log);
-  const std::string report((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  ASSERT_TRUE(WIFEXITED(status)) << report;
-  if (WEXITSTATUS(status) == 77) GTEST_SKIP() << report;
-  EXPECT_EQ(WEXITSTATUS(status), 0) << report;
-  EXPECT_NE(report.find("v.gltf: 0 errors"), std::string::npos) << report;
-  EXPECT_NE(report.find("v.glb: 0 errors"), std::string::npos) << report;
+  const testing::ValidatorRun r = testing::run_gltf_validator(
+      {write("v.gltf", big), write("v.glb", big)}, temp_dir() / "validator.log");
+  if (!r.skipped.empty()) GTEST_SKIP() << r.skipped;
+  EXPECT_EQ(r.status, 0) << r.report;
+  EXPECT_NE(r.report.find("v.gltf: 0 errors"), std::string::npos) << r.report;
+  EXPECT_NE(r.report.find("v.glb: 0 errors"), std::string::npos) << r.report;
 }
 
 TEST(MeshFormats, ExtensionChoosesTheFormatAndUnknownOnesAreRejected) {
