@@ -358,11 +358,17 @@ struct SolvingMode {
   SceneReading reading;
   std::string max_memory;
   bool memory_limit = false;
+  double unit = 1.0;
+  CLI::Option* unit_option = nullptr;
 
   void add_to(CLI::App& app, CommandLine& c, bool time_limit, bool images, bool memory) {
     solving.add_to(app, c.run, time_limit);
     showing.add_to(app, c.job.outputs, images);
     reading.add_to(app, kEmitHelp, kHierarchyHelp);
+    unit_option = app.add_option("--unit", unit,
+                                 "Metres per scene unit of a description, OBJ or PLY scene (0.001: "
+                                 "millimetres), for lights in candela and lux per square metre "
+                                 "(glTF is in metres: ignored there); default 1");
     memory_limit = memory;
     if (memory_limit) add_max_memory(app, max_memory);
     app.add_flag("-q,--quiet", c.run.quiet, "Print errors only (no stages, progress or warnings)");
@@ -371,6 +377,15 @@ struct SolvingMode {
     solving.apply(c.run);
     showing.apply(c.job.outputs);
     reading.apply(c.job.input);
+    if (unit_option->count() > 0) {
+      if (!(unit > 0.0 && std::isfinite(unit))) {
+        throw CLI::ValidationError(
+            "--unit", fmt::format("expected the metres in one scene unit, a positive number (0.01 "
+                                  "for centimetres), got {}",
+                                  unit));
+      }
+      c.job.input.unit = unit;
+    }
     if (memory_limit) apply_max_memory(max_memory, c.job.max_memory);
   }
 };

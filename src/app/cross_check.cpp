@@ -12,6 +12,7 @@
 #include "hierarchy/hierarchy.h"
 #include "run/prepared_solve.h"
 #include "run/scene_checks.h"
+#include "run/scene_unit.h"
 #include "scene/scene_file.h"
 #include "solver/solver.h"
 #include "visibility/agreement.h"
@@ -119,7 +120,7 @@ int run_cross_check(const CommandLine& cmd) {
   const BackendKind first = cmd.run.backend, second = *cmd.cross_check;
   const SceneInput& in = cmd.job.input;
   check_scene_input(in);
-  const Hierarchy h = load_hierarchy(in.path, in.model, in.hierarchy);
+  const Hierarchy h = load_scene(in);
   require_light(h, in, cmd.run.solver);
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                             size_t(thread_count(cmd.run.threads)));

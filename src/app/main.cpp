@@ -17,6 +17,7 @@
 #include "hierarchy/hierarchy.h"
 #include "run/scene_checks.h"
 #include "run/scene_job.h"
+#include "run/scene_unit.h"
 #include "scene/scene_file.h"
 #include "solver/ranks.h"
 
@@ -41,7 +42,7 @@ int run(const rad::CommandLine& cmd, rad::Ranks* ranks) {
     case Mode::Check: {
       const SceneInput& in = cmd.job.input;
       check_scene_input(in);
-      std::fputs(summarize(load_hierarchy(in.path, in.model, in.hierarchy)).c_str(), stdout);
+      std::fputs(summarize(load_scene(in)).c_str(), stdout);
       return kExitDone;
     }
     case Mode::Solve:

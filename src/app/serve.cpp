@@ -9,6 +9,7 @@
 #include "hierarchy/auto_hierarchy.h"
 #include "run/prepared_solve.h"
 #include "run/scene_checks.h"
+#include "run/scene_unit.h"
 #include "run/write_outputs.h"
 #include "serve/session.h"
 #include "serve/shutdown.h"
@@ -29,7 +30,7 @@ int run_serve(const CommandLine& cmd) {
 
   const SceneInput& in = cmd.job.input;
   check_scene_input(in);  // no light is no error here: the page can give an object some
-  const Hierarchy hierarchy = load_hierarchy(in.path, in.model, in.hierarchy);
+  const Hierarchy hierarchy = load_scene(in);
   const PreparedSolve prepared(hierarchy, run);
   SessionOptions so;
   so.solver = run.solver;

@@ -18,7 +18,7 @@ double luminance(const Vec3& c) {
 
 }  // namespace
 
-std::vector<ObjectIlluminance> object_illuminance(const SolverState& s) {
+std::vector<ObjectIlluminance> object_illuminance(const SolverState& s, double metres_per_unit) {
   const Hierarchy& h = *s.solution.hierarchy;
   std::vector<ObjectIlluminance> per(h.objects.size());
   for (size_t o = 0; o < per.size(); ++o) {
@@ -45,6 +45,7 @@ std::vector<ObjectIlluminance> object_illuminance(const SolverState& s) {
   for (ObjectIlluminance& o : per) {
     if (!(o.area > 0.0)) continue;
     o.mean /= o.area;
+    o.area *= metres_per_unit * metres_per_unit;
     out.push_back(std::move(o));
   }
   return out;

@@ -18,8 +18,10 @@ struct ObjectIlluminance {
   double min = 0.0, mean = 0.0, max = 0.0;
 };
 
-/// Every Pure with area, in object order.
-std::vector<ObjectIlluminance> object_illuminance(const SolverState& s);
+/// Every Pure with area, in object order; areas in square metres with `metres_per_unit` metres
+/// to a scene unit (--unit, run/scene_unit.h).
+std::vector<ObjectIlluminance> object_illuminance(const SolverState& s,
+                                                  double metres_per_unit = 1.0);
 
 /// A table of the `rows` largest objects by area (all when fewer), with a title line.
 std::string format_illuminance(const std::vector<ObjectIlluminance>& objects, size_t rows);

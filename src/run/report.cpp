@@ -11,6 +11,7 @@
 #include "mesh/patch_mesh.h"
 #include "run/object_illuminance.h"
 #include "run/prepared_solve.h"
+#include "run/scene_unit.h"
 
 namespace rad {
 
@@ -54,6 +55,8 @@ void write_stats_json(const std::string& path, const RunOptions& run, const Scen
   using nlohmann::json;
   const VisibilityStats& r = s.stats.rays;
   const Vec3 ambient = ambient_radiosity(s.energy, s.solution);
+  // Energies are radiosity times area in square scene units: square metres with --unit.
+  const double unit = metres_per_unit(job.input), square_metres = unit * unit;
   json history = json::array();
   for (const ShotRecord& h : s.shots.history) {
     history.push_back({{"shot", h.shot},
@@ -83,7 +86,8 @@ void write_stats_json(const std::string& path, const RunOptions& run, const Scen
         {"intensity_cut", s.options.intensity_cut},
         {"roulette", s.options.roulette},
         {"converge", s.options.converge},
-        {"min_size", s.scene.min_size}}},
+        {"min_size", s.scene.min_size},
+        {"unit", unit}}},
       {"stop_reason", to_string(stop)},
       {"partial", stop == StopReason::Interrupted || stop == StopReason::MemoryLimit},
       {"checkpoint",
@@ -109,8 +113,8 @@ void write_stats_json(const std::string& path, const RunOptions& run, const Scen
         {"hidden_triangles", s.stats.hidden},
         {"vertices", count_vertices(s.solution.mesh)},
         {"elements", count_leaves(s.solution.mesh)},
-        {"emitted_energy", s.energy.emitted_energy},
-        {"absorbed_energy", s.energy.absorbed_energy},
+        {"emitted_energy", s.energy.emitted_energy * square_metres},
+        {"absorbed_energy", s.energy.absorbed_energy * square_metres},
         {"unshot_fraction", s.energy.unshot_fraction()},
         {"ambient", {ambient.x, ambient.y, ambient.z}},
         {"ambient_displayed", job.outputs.ambient}}},
@@ -155,13 +159,24 @@ void write_stats_json(const std::string& path, const RunOptions& run, const Scen
   }
   // Per object: the light arriving (lux with photometric lights), least, mean, most.
   json objects = json::array();
-  for (const ObjectIlluminance& o : object_illuminance(s)) {
+  for (const ObjectIlluminance& o : object_illuminance(s, unit)) {
     objects.push_back({{"name", o.name},
                        {"area", o.area},
                        {"illuminance", {{"min", o.min}, {"mean", o.mean}, {"max", o.max}}}});
   }
   j["objects"] = objects;
   j["lights"] = s.solution.hierarchy->lights.size();
+  // Each light's power (lumens with candela or lux in metres) as the solve counts it.
+  json light_power = json::array();
+  const std::vector<Light>& lights = s.solution.hierarchy->lights;
+  for (size_t i = 0; i < lights.size() && i < s.energy.light_power.size(); ++i) {
+    const Vec3& c = lights[i].colour;
+    light_power.push_back(
+        {{"name", lights[i].name},
+         {"kind", to_string(lights[i].kind)},
+         {"lumens", s.energy.light_power[i] * (c.x + c.y + c.z) / 3.0 * square_metres}});
+  }
+  j["light_power"] = light_power;
   // The camera the images were rendered through, as --camera takes it (null: no image).
   j["camera"] = camera ? json(camera_spec(*camera)) : json(nullptr);
   // Hex: JSON numbers are doubles to most readers.

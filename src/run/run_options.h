@@ -21,6 +21,7 @@ struct SceneInput {
   std::string path;                        // a description (.des) or a model (.obj, .ply, ...)
   ModelOptions model;                      // --emit rules for a model
   std::optional<HierarchyMode> hierarchy;  // --hierarchy; none: default_hierarchy_mode
+  std::optional<double> unit;  // --unit: metres per scene unit (none: 1; glTF: metres always)
 };
 
 /// How a scene is solved: every mode that solves.

@@ -27,6 +27,7 @@
 #include "run/prepared_solve.h"
 #include "run/report.h"
 #include "run/scene_checks.h"
+#include "run/scene_unit.h"
 #include "run/write_outputs.h"
 #include "scene/scene_file.h"
 #include "solver/checkpoint.h"
@@ -46,6 +47,7 @@ uint64_t job_fingerprint(const RunOptions& run, const SceneJob& job, const Hiera
   Fingerprint f;
   f.add(std::string_view(RAD_VERSION)).add(solve_fingerprint(h, run.solver, run.backend));
   f.add(run.solver.converge).add(run.solver.max_shots).add(run.solver.time_limit);
+  f.add(metres_per_unit(job.input));  // the statistics' areas and powers
   f.add(job.outputs.ascii)
       .add(job.outputs.ambient)
       .add(job.outputs.tonemap)
@@ -267,7 +269,7 @@ SceneJobResult run_scene_job(const RunOptions& run, const SceneJob& job, Ranks* 
   }
 
   say("Reading description file...");
-  const Hierarchy hierarchy = load_hierarchy(job.input.path, job.input.model, job.input.hierarchy);
+  const Hierarchy hierarchy = load_scene(job.input);
   require_light(hierarchy, job.input, run.solver);
   times.parse = since(start);
   const uint64_t job_id = job.stats_json.empty() ? 0 : job_fingerprint(run, job, hierarchy);
@@ -309,7 +311,9 @@ SceneJobResult run_scene_job(const RunOptions& run, const SceneJob& job, Ranks* 
   if (!quiet) std::fputs(format_statistics(state, times.total).c_str(), stdout);
   // A scene lit by lights has its light in lux: what a lighting designer looks at first.
   if (!quiet && !state.solution.hierarchy->lights.empty())
-    std::fputs(format_illuminance(object_illuminance(state), 12).c_str(), stdout);
+    std::fputs(
+        format_illuminance(object_illuminance(state, metres_per_unit(job.input)), 12).c_str(),
+        stdout);
   return {stop, state.shots.count, count_vertices(state.solution.mesh),
           state.energy.unshot_fraction(), times.total};
 }

@@ -36,7 +36,7 @@ struct SceneJobResult {
 
 /// What a job's outputs depend on: the solve's fingerprint (scene geometry, hierarchy,
 /// materials, flags, every option that changes the answer, backend), the stop criteria, the
-/// output options and paths, and rad's version.
+/// output options and paths, the scene unit (--unit), and rad's version.
 uint64_t job_fingerprint(const RunOptions& run, const SceneJob& job, const Hierarchy& h);
 
 /// Runs `job` with the options of `run`, printing the original's stage lines and statistics

@@ -855,3 +855,48 @@ TEST(CommandLine, FalseColourShowsAKnownIlluminanceInThePalettesColourForIt) {
 }
 
 }  // namespace
+
+namespace {
+
+// --unit: a description in centimetres, its lamp 200 units = 2 m up, is reported in lux, square
+// metres and lumens; the value is checked before any work; a glTF model is metres anyway.
+TEST(CommandLine, UnitGivesTheMetresOfASceneUnitForLuxAreasAndLumens) {
+  const fs::path dir = fs::temp_directory_path() / ("rad_test_unit_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "cm.des")
+      << "\"lamp over a floor, centimetres\"\n"
+         "Object \"floor\" Pure { Reflectivity 0 Color <1 1 1> Emission 0\n"
+         "  Data { <-200 0 -200> <-200 0 200> <200 0 200>  <-200 0 -200> <200 0 200> "
+         "<200 0 -200> } }\n"
+         "Object \"lamp\" Light { Type Point Position <0 200 0> Intensity 400 }\n";
+  RadRun r = run_rad((dir / "cm.des").string() + " " + (dir / "cm.ply").string() +
+                     " --unit 0.01 -q --stats-json " + (dir / "cm.json").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string json = read_file(dir / "cm.json");
+  const auto number = [&](const std::string& key) {
+    const size_t at = json.find("\"" + key + "\": ");
+    return at == std::string::npos ? -1.0 : std::stod(json.substr(at + key.size() + 4));
+  };
+  EXPECT_NEAR(number("max"), 100.0, 0.1) << json;  // 400 cd at 2 m
+  EXPECT_NEAR(number("area"), 16.0, 1e-3) << json;
+  EXPECT_NEAR(number("lumens"), 4.0 * M_PI * 400.0, 1.0) << json;
+  EXPECT_EQ(number("unit"), 0.01) << json;
+
+  for (const char* bad : {"0", "-1", "nan", "metres"}) {
+    r = run_rad((dir / "cm.des").string() + " x.ply --unit " + bad);
+    EXPECT_EQ(r.code, rad::kExitUsage) << bad;
+    EXPECT_NE(r.err.find("--unit"), std::string::npos) << bad << ": " << r.err;
+  }
+  // A glTF model's lengths are metres by the glTF specification: --unit is ignored, saying so.
+  std::ofstream(dir / "wall.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+  r = run_rad("convert -q " + (dir / "wall.obj").string() + " " + (dir / "wall.glb").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run_rad("--check " + (dir / "wall.glb").string() + " --unit 0.01");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find((dir / "wall.glb").string() + ": warning: --unit 0.01 is ignored"),
+            std::string::npos)
+      << r.err;
+  fs::remove_all(dir);
+}
+
+}  // namespace
