@@ -2,6 +2,7 @@
 
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cstring>
 #include <functional>
 #include <limits>
@@ -60,6 +61,9 @@ int add_indices(tinygltf::Model& m, const std::vector<uint32_t>& indices) {
   m.accessors.push_back(a);
   return int(m.accessors.size() - 1);
 }
+
+/// The most a textured file's colours are scaled down to keep COLOR_0 within 0-1.
+constexpr float kMaxColourDivisor = 4.0f;
 
 int gltf_wrap(TextureWrap w) {
   switch (w) {
@@ -234,14 +238,22 @@ void write_gltf(std::ostream& out, const OutputMesh& mesh, const ToneMap& tm, bo
     const bool textured = !mesh.textures().empty();
     std::vector<Vec3> colour(mesh.display.size());
     for (size_t v = 0; v < colour.size(); ++v) colour[v] = tone_map(mesh.display[v], tm);
+    float scale = 1.0f;
     if (textured) {
       // The viewer multiplies: baseColorTexture x COLOR_0 is the display colour at the vertex.
+      float top = 0.0f;
       for (size_t v = 0; v < colour.size(); ++v) {
         for (int k = 0; k < 3; ++k) {
           const float t = mesh.texel[v][k];
           colour[v][k] = t > 0.0f ? colour[v][k] / t : 0.0f;
+          top = std::max(top, colour[v][k]);
         }
       }
+      // glTF holds COLOR_0 within 0-1, and the light on a texture darker than white can be
+      // brighter than that: every colour of the file is scaled down alike (by at most two stops;
+      // beyond, the brightest clamp), so the picture keeps its ratios.
+      scale = 1.0f / std::clamp(top, 1.0f, kMaxColourDivisor);
+      for (Vec3& c : colour) c = glm::min(c * scale, Vec3(1.0f));
     }
 
     tinygltf::Primitive prim;
@@ -260,6 +272,11 @@ void write_gltf(std::ostream& out, const OutputMesh& mesh, const ToneMap& tm, bo
 
     tinygltf::Mesh gm;
     gm.name = "radiosity";
+    if (textured) {
+      tinygltf::Value::Object extras;
+      extras["colour_scale"] = tinygltf::Value(double(scale));
+      gm.extras = tinygltf::Value(extras);
+    }
     if (!textured) {
       prim.indices = add_indices(m, mesh.indices());
       m.materials.push_back(mat);

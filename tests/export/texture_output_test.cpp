@@ -145,10 +145,14 @@ const Solved& solved() {
 
 const ToneMap kTone{1.5f, ToneCurve::Clamp};
 
-std::string write(const std::string& name, const OutputMesh& m, bool ascii = false) {
+/// Bright enough that the light on the checker's dark squares exceeds white.
+const ToneMap kBright{8.0f, ToneCurve::Clamp};
+
+std::string write(const std::string& name, const OutputMesh& m, bool ascii = false,
+                  const ToneMap& tone = kTone) {
   const std::string path = (temp_dir() / name).string();
   MeshFileOptions o;
-  o.tone = kTone;
+  o.tone = tone;
   o.ascii = ascii;
   write_mesh_file(path, m, o);
   return path;
@@ -234,15 +238,30 @@ TEST(TextureOutput, PngKeepsTheBytesReadIn) {
   }
 }
 
-/// Reads a glTF or GLB rad wrote and checks it against `m`: each image once, as read; the
-/// texture coordinates as the mesh has them; baseColorTexture x COLOR_0 the display colour.
-void check_gltf(const std::string& path, const OutputMesh& m, bool binary) {
+tinygltf::Model read_gltf(const std::string& path) {
   tinygltf::TinyGLTF loader;
   tinygltf::Model g;
   std::string err, warn;
-  const bool ok = binary ? loader.LoadBinaryFromFile(&g, &err, &warn, path)
-                         : loader.LoadASCIIFromFile(&g, &err, &warn, path);
-  ASSERT_TRUE(ok) << err;
+  const bool ok = path.ends_with(".glb") ? loader.LoadBinaryFromFile(&g, &err, &warn, path)
+                                         : loader.LoadASCIIFromFile(&g, &err, &warn, path);
+  EXPECT_TRUE(ok) << err;
+  return g;
+}
+
+/// The factor every COLOR_0 of a textured file is scaled by to stay within 0-1.
+float colour_scale(const tinygltf::Model& g) {
+  const tinygltf::Value& extras = g.meshes.at(0).extras;
+  EXPECT_TRUE(extras.Has("colour_scale"));
+  return float(extras.Get("colour_scale").GetNumberAsDouble());
+}
+
+/// Reads a glTF or GLB rad wrote and checks it against `m`: each image once, as read; the
+/// texture coordinates as the mesh has them; baseColorTexture x COLOR_0 the display colour
+/// (times the file's colour scale), COLOR_0 within 0-1.
+void check_gltf(const std::string& path, const OutputMesh& m, const ToneMap& tone) {
+  const tinygltf::Model g = read_gltf(path);
+  ASSERT_EQ(g.meshes.size(), 1u);
+  const float scale = colour_scale(g);
   const Solved& x = solved();
   // The checker and the disc, each embedded once though the checker shows on two materials.
   ASSERT_EQ(g.images.size(), 2u);
@@ -262,13 +281,13 @@ void check_gltf(const std::string& path, const OutputMesh& m, bool binary) {
   for (const tinygltf::Material& mat : g.materials) {
     EXPECT_TRUE(mat.extensions.count("KHR_materials_unlit")) << mat.name;
   }
-  ASSERT_EQ(g.meshes.size(), 1u);
   const std::vector<tinygltf::Primitive>& prims = g.meshes[0].primitives;
   ASSERT_EQ(prims.size(), 4u);
   EXPECT_FALSE(prims[0].attributes.count("TEXCOORD_0"));
   EXPECT_EQ(g.materials[size_t(prims[0].material)].pbrMetallicRoughness.baseColorTexture.index, -1);
   const std::vector<Vec3> colour = accessor_data<Vec3>(g, prims[0].attributes.at("COLOR_0"));
   ASSERT_EQ(colour.size(), m.position().size());
+  for (const Vec3& c : colour) ASSERT_LE(max_component(c), 1.0f);
 
   size_t point_sampled = 0;  // corners of textured faces
   for (size_t k = 1; k < prims.size(); ++k) {
@@ -284,7 +303,9 @@ void check_gltf(const std::string& path, const OutputMesh& m, bool binary) {
     if (gs.wrapS == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE)
       map.sampler.wrap_s = map.sampler.wrap_t = TextureWrap::ClampToEdge;
     for (uint32_t v : accessor_data<uint32_t>(g, p.indices)) {
-      const Vec3 shown = tone_map(m.display[v], kTone);
+      const Vec3 shown = tone_map(m.display[v], tone) * scale;
+      // The brightest light clamps when the scale alone would dim the file by over two stops.
+      if (max_component(colour[v]) == 1.0f) continue;
       // At the texture as the solver filtered it over the vertex's element: exactly.
       for (int c = 0; c < 3; ++c)
         EXPECT_NEAR(m.texel[v][c] * colour[v][c], shown[c], 1e-5f) << "vertex " << v;
@@ -302,18 +323,26 @@ void check_gltf(const std::string& path, const OutputMesh& m, bool binary) {
 
 TEST(TextureOutput, GltfEmbedsEachImageOnceAndBakesTheLightIntoColour0) {
   const OutputMesh m = make_output_mesh(solved().s, true);
-  check_gltf(write("room.glb", m), m, true);
-  check_gltf(write("room.gltf", m), m, false);
+  check_gltf(write("room.glb", m), m, kTone);
+  check_gltf(write("room.gltf", m), m, kTone);
+  EXPECT_EQ(colour_scale(read_gltf(write("room.glb", m))), 1.0f);
+}
+
+TEST(TextureOutput, LightBrighterThanWhiteOnADarkTextureScalesTheFilesColoursIntoRange) {
+  const OutputMesh m = make_output_mesh(solved().s, true);
+  const std::string path = write("bright.glb", m, false, kBright);
+  check_gltf(path, m, kBright);
+  const float scale = colour_scale(read_gltf(path));
+  EXPECT_LT(scale, 1.0f);
+  EXPECT_GE(scale, 0.25f);
 }
 
 TEST(TextureOutput, Colour0IsTheIrradianceTimesTheExposureBelowWhite) {
   // Without the ambient term, on a surface that does not emit, under the clamp curve below
   // white: COLOR_0 = scale x factor x H, and the floor's factor is 1.
   const OutputMesh m = make_output_mesh(solved().s, false);
-  tinygltf::TinyGLTF loader;
-  tinygltf::Model g;
-  std::string err, warn;
-  ASSERT_TRUE(loader.LoadBinaryFromFile(&g, &err, &warn, write("plain.glb", m))) << err;
+  const tinygltf::Model g = read_gltf(write("plain.glb", m));
+  ASSERT_EQ(colour_scale(g), 1.0f);
   const std::vector<Vec3> colour =
       accessor_data<Vec3>(g, g.meshes[0].primitives[0].attributes.at("COLOR_0"));
   size_t n = 0;
@@ -336,11 +365,13 @@ TEST(TextureOutput, Colour0IsTheIrradianceTimesTheExposureBelowWhite) {
 TEST(TextureOutput, TheTexturedGltfValidates) {
   const OutputMesh m = make_output_mesh(solved().s, true);
   const testing::ValidatorRun r = testing::run_gltf_validator(
-      {write("valid.gltf", m), write("valid.glb", m)}, temp_dir() / "validator.log");
+      {write("valid.gltf", m), write("valid.glb", m), write("bright.glb", m, false, kBright)},
+      temp_dir() / "validator.log");
   if (!r.skipped.empty()) GTEST_SKIP() << r.skipped;
   EXPECT_EQ(r.status, 0) << r.report;
   EXPECT_NE(r.report.find("valid.gltf: 0 errors, 0 warnings"), std::string::npos) << r.report;
   EXPECT_NE(r.report.find("valid.glb: 0 errors, 0 warnings"), std::string::npos) << r.report;
+  EXPECT_NE(r.report.find("bright.glb: 0 errors, 0 warnings"), std::string::npos) << r.report;
 }
 
 TEST(TextureOutput, ObjNamesItsImagesInAnMtlAndReadsBackWithItsCoordinates) {
