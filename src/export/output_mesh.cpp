@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solver/texture_factors.h"
+
 namespace rad {
 
 namespace {

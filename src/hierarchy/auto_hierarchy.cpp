@@ -55,6 +55,7 @@ struct Regrouper {
     p.loc = o.loc;
     p.material = o.material;
     p.base_texture = o.base_texture;
+    p.emissive_texture = o.emissive_texture;
     p.cutout = o.cutout;
     if (!o.casts_shadows) p.flags.casts_shadows = false;
     if (!o.receives_shadows) p.flags.receives_shadows = false;
@@ -180,6 +181,7 @@ struct Placer {
       SceneObject& s = out.objects.back();
       s.material = p.material;
       s.base_texture = p.base_texture;
+      s.emissive_texture = p.emissive_texture;
       s.cutout = p.cutout;
       s.casts_shadows = p.casts_shadows;
       s.receives_shadows = p.receives_shadows;

@@ -57,6 +57,7 @@ struct Builder {
       o.parent = parent;
       o.material = content->material;
       o.base_texture = content->base_texture;
+      o.emissive_texture = content->emissive_texture;
       o.cutout = content->cutout;
       o.first_triangle = static_cast<uint32_t>(out.triangles.size());
       const SceneObject* up = parent >= 0 ? &out.objects[size_t(parent)] : nullptr;

@@ -44,9 +44,10 @@ struct SceneObject {
   Aabb box;                     // of all triangles below
   uint32_t first_triangle = 0;  // triangles below this object: [first, first + count)
   uint32_t triangle_count = 0;
-  Material material;        // Pure only
-  TextureMap base_texture;  // Pure only: see ObjectDescription::base_texture
-  AlphaMask cutout;         // Pure only: see ObjectDescription::cutout
+  Material material;            // Pure only
+  TextureMap base_texture;      // Pure only: see ObjectDescription::base_texture
+  TextureMap emissive_texture;  // Pure only: see ObjectDescription::emissive_texture
+  AlphaMask cutout;             // Pure only: see ObjectDescription::cutout
   // The per-object flags of design §8, resolved: the object's own setting, else its nearest
   // ancestor's, else the default.
   bool casts_shadows = true;     // false: shadow rays pass through its triangles

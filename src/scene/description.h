@@ -81,6 +81,9 @@ struct ObjectDescription {
   /// material's reflectance scaled by the texture filtered over its element, over the
   /// texture's mean (solver/texture_factors.h).
   TextureMap base_texture;
+  /// Pure only: a model material's emissive texture, or none: the emission is then its factor
+  /// times the texture's mean, and each vertex scales it likewise.
+  TextureMap emissive_texture;
   /// Pure only: where a model's material is cut out (texture alpha below a cutoff), or none.
   /// Shadow rays pass through the holes in every backend, and each vertex receives, reflects
   /// and shoots only for the opaque part of its element.

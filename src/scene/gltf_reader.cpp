@@ -275,6 +275,29 @@ ModelMaterial material_of(const tinygltf::Material& g, const Context& c, const t
         Vec3(float(g.emissiveFactor[0] * strength), float(g.emissiveFactor[1] * strength),
              float(g.emissiveFactor[2] * strength));
   }
+  // The emissive texture, read through the base texture's coordinates when there is one (rad
+  // keeps one set per triangle), else through its own.
+  const int et = g.emissiveTexture.index;
+  if (et >= 0 && size_t(et) < m.textures.size() && max_component(mat.emission) > 0.0f) {
+    const auto it = c.images.find(m.textures[size_t(et)].source);
+    if (it != c.images.end()) {
+      mat.emission *= it->second->mean;
+      mat.emissive_texture.image = it->second;
+      const int s = m.textures[size_t(et)].sampler;
+      if (s >= 0 && size_t(s) < m.samplers.size()) {
+        mat.emissive_texture.sampler.wrap_s = wrap_of(m.samplers[size_t(s)].wrapS);
+        mat.emissive_texture.sampler.wrap_t = wrap_of(m.samplers[size_t(s)].wrapT);
+        mat.emissive_texture.sampler.nearest =
+            m.samplers[size_t(s)].magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+      }
+      if (!mat.base_texture) {
+        coordinates = coordinates_of(g.emissiveTexture.texCoord, g.emissiveTexture.extensions);
+      }
+      ++textures.read;
+    } else {
+      ++textures.unread;
+    }
+  }
   for (int k = 0; k < 3; ++k) {
     if (!(mat.reflectance[k] >= 0.0f && std::isfinite(mat.reflectance[k])) ||
         !(mat.emission[k] >= 0.0f && std::isfinite(mat.emission[k]))) {
@@ -600,7 +623,7 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
     if (!group.triangles.empty()) m.groups.push_back(std::move(group));
   }
   if (fallback_used)
-    m.materials.push_back({"default", Vec3(0.8f), Vec3(0.0f), {}, SourceLoc{path}});
+    m.materials.push_back({"default", Vec3(0.8f), Vec3(0.0f), {}, {}, SourceLoc{path}});
   if (m.groups.empty()) {
     if (skipped > 0) {
       fail(path,

@@ -16,14 +16,15 @@ namespace rad {
 
 struct ModelMaterial {
   std::string name;
-  Vec3 reflectance{0.8f};   // diffuse colour (OBJ Kd), times the texture's mean colour
-  Vec3 emission{0.0f};      // OBJ Ke
-  TextureMap base_texture;  // OBJ map_Kd, glTF baseColorTexture (empty: none read)
-  SourceLoc loc;            // where it was defined
-  bool two_sided = false;   // glTF doubleSided: lit, reflecting and shooting on both sides
-  AlphaMask cutout;         // glTF alphaMode MASK or BLEND, OBJ map_d (empty: opaque)
+  Vec3 reflectance{0.8f};       // diffuse colour (OBJ Kd), times the texture's mean colour
+  Vec3 emission{0.0f};          // OBJ Ke
+  TextureMap base_texture;      // OBJ map_Kd, glTF baseColorTexture (empty: none read)
+  TextureMap emissive_texture;  // OBJ map_Ke, glTF emissiveTexture (empty: none read)
+  SourceLoc loc;                // where it was defined
+  bool two_sided = false;       // glTF doubleSided: lit, reflecting and shooting on both sides
+  AlphaMask cutout;             // glTF alphaMode MASK or BLEND, OBJ map_d (empty: opaque)
   /// Whether its faces need texture coordinates: it has a texture or a cut-out.
-  bool uses_coordinates() const { return base_texture || cutout; }
+  bool uses_coordinates() const { return base_texture || emissive_texture || cutout; }
 };
 
 /// A named part of the model (OBJ `o`/`g`): triangles, each with its material.

@@ -99,6 +99,7 @@ SceneDescription model_to_scene(Model m, const ModelOptions& o) {
         p.loc = m.materials[k].loc;
         p.material = materials[k];
         p.base_texture = m.materials[k].base_texture;
+        p.emissive_texture = m.materials[k].emissive_texture;
         p.cutout = m.materials[k].cutout;
         if (m.materials[k].two_sided) p.flags.two_sided = true;
         emits |= max_component(p.material.emission) > 0.0f;

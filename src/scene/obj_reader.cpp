@@ -225,17 +225,30 @@ Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& p
     mat.loc = SourceLoc{path};
     mat.reflectance = colour(t.diffuse);
     mat.emission = colour(t.emission);
-    if (!t.diffuse_texname.empty() && !texture_folder.empty()) {
+    // A texture file named by the material (`role` says which, for the warning), decoded once;
+    // nullptr (and a warning) when it cannot be read.
+    auto texture = [&](const std::string& name,
+                       const std::string& role) -> std::shared_ptr<const TextureImage> {
+      if (name.empty() || texture_folder.empty()) return nullptr;
       const auto own = material_folders.find(t.name);
       const std::string& folder = own != material_folders.end() ? own->second : texture_folder;
-      const std::optional<std::string> file = find_texture(folder, t.diffuse_texname);
+      const std::optional<std::string> file = find_texture(folder, name);
       std::shared_ptr<const TextureImage> image;
       if (file) {
         const auto [it, made] = decoded.try_emplace(*file);
         if (made) it->second = read_texture_file(*file);
         image = it->second;
       }
-      if (image) {
+      if (!image) {
+        std::string& names =
+            unread[(fs::path(folder) / name).string() +
+                   (file ? " (not an image stb_image decodes)" : " (no such file)")];
+        names += (names.empty() ? "'" : ", '") + t.name + "'" + role;
+      }
+      return image;
+    };
+    if (!t.diffuse_texname.empty() && !texture_folder.empty()) {
+      if (const auto image = texture(t.diffuse_texname, "")) {
         mat.reflectance *= image->mean;
         mat.base_texture.image = image;
         if (t.diffuse_texopt.clamp) {  // map_Kd -clamp on
@@ -245,32 +258,27 @@ Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& p
         ++m.textures.read;
       } else {
         ++m.textures.unread;
-        std::string& names =
-            unread[(fs::path(folder) / t.diffuse_texname).string() +
-                   (file ? " (not an image stb_image decodes)" : " (no such file)")];
-        names += (names.empty() ? "'" : ", '") + t.name + "'";
+      }
+    }
+    // map_Ke: emission as Kd reflects, Ke times the texture.
+    if (!t.emissive_texname.empty() && !texture_folder.empty() &&
+        max_component(mat.emission) > 0.0f) {
+      if (const auto image = texture(t.emissive_texname, " (map_Ke)")) {
+        mat.emission *= image->mean;
+        mat.emissive_texture.image = image;
+        if (t.emissive_texopt.clamp) {
+          mat.emissive_texture.sampler.wrap_s = mat.emissive_texture.sampler.wrap_t =
+              TextureWrap::ClampToEdge;
+        }
+        ++m.textures.read;
+      } else {
+        ++m.textures.unread;
       }
     }
     // map_d: a cut-out where its alpha (its grey level, in an image without alpha) is below 0.5.
-    if (!t.alpha_texname.empty() && !texture_folder.empty()) {
-      const auto own = material_folders.find(t.name);
-      const std::string& folder = own != material_folders.end() ? own->second : texture_folder;
-      const std::optional<std::string> file = find_texture(folder, t.alpha_texname);
-      std::shared_ptr<const TextureImage> image;
-      if (file) {
-        const auto [it, made] = decoded.try_emplace(*file);
-        if (made) it->second = read_texture_file(*file);
-        image = it->second;
-      }
-      if (image) {
-        mat.cutout.texture = {image, mat.base_texture.sampler};
-        mat.cutout.from_red = !image->has_alpha;
-      } else {
-        std::string& names =
-            unread[(fs::path(folder) / t.alpha_texname).string() +
-                   (file ? " (not an image stb_image decodes)" : " (no such file)")];
-        names += (names.empty() ? "'" : ", '") + t.name + "' (map_d: it stays opaque)";
-      }
+    if (const auto image = texture(t.alpha_texname, " (map_d: no cut-out)")) {
+      mat.cutout.texture = {image, mat.base_texture.sampler};
+      mat.cutout.from_red = !image->has_alpha;
     }
     bool bad = false;
     for (int c = 0; c < 3; ++c) {
@@ -285,7 +293,7 @@ Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& p
   }
   for (const auto& [texture, names] : unread) {
     warn(SourceLoc{path},
-         "cannot read the texture " + texture + "; material " + names + " reflects its Kd alone");
+         "cannot read the texture " + texture + "; material " + names + " takes its colour alone");
   }
   const uint32_t fallback = uint32_t(m.materials.size());
   bool fallback_used = false;
@@ -351,7 +359,7 @@ Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& p
                               "the texture's mean colour");
   }
   if (fallback_used)
-    m.materials.push_back({"default", Vec3(0.8f), Vec3(0.0f), {}, SourceLoc{path}});
+    m.materials.push_back({"default", Vec3(0.8f), Vec3(0.0f), {}, {}, SourceLoc{path}});
   // What the model loses, once per kind at its first line; a model of nothing else is refused.
   std::string lost;
   for (const Dropped& d : dropped) {

@@ -57,6 +57,11 @@ uint64_t solve_fingerprint(const Hierarchy& h, const SolverOptions& o, BackendKi
           .add(t.image->mean);
       f.add(t.sampler.wrap_s).add(t.sampler.wrap_t).add(t.sampler.nearest);
     }
+    f.add(bool(ob.emissive_texture));
+    if (const TextureMap& t = ob.emissive_texture) {
+      f.add(std::string_view(t.image->name)).add(t.image->mean);
+      f.add(t.sampler.wrap_s).add(t.sampler.wrap_t).add(t.sampler.nearest);
+    }
     f.add(bool(ob.cutout));
     if (const AlphaMask& m = ob.cutout) {
       f.add(std::string_view(m.texture.image->name)).add(m.texture.image->mean);
@@ -160,7 +165,7 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   mesh.polygons.resize(np);
   std::vector<std::vector<VertexState>> states(np);
   std::vector<std::vector<VertexCopy>> copies(np);
-  std::vector<std::vector<Vec3>> factors(np);
+  std::vector<std::vector<TextureFactors>> factors(np);
   for (size_t p = 0; p < np; ++p) {
     read_polygon(r, mesh.polygons[p], states[p], factors[p], copies[p], np,
                  is_textured(s.solution.hierarchy->triangles, p, s.solution.object_of(p)));

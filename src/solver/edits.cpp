@@ -33,9 +33,11 @@ void set_material(SolverState& s, int32_t object, const Material& m, const Visib
   s.solution.materials[size_t(object)] = m;
   for (uint32_t t = o.first_triangle; t < o.first_triangle + o.triangle_count; ++t) {
     std::vector<VertexState>& vs = s.solution.vertex_states[t];
-    const std::vector<Vec3>& factors = s.solution.texture_factors[t];
+    const std::vector<TextureFactors>& factors = s.solution.texture_factors[t];
     for (size_t v = 0; v < vs.size(); ++v) {
-      vs[v].unshot += d_e + (factors.empty() ? d_rho : d_rho * factors[v]) * vs[v].irradiance;
+      vs[v].unshot += factors.empty() ? d_e + d_rho * vs[v].irradiance
+                                      : d_e * factors[v].emission +
+                                            d_rho * factors[v].reflectance * vs[v].irradiance;
     }
     s.energy.emitted_energy += double(h.triangles.area[t]) * double(mean_component(d_e));
     s.energy.unshot_energy[t] = polygon_unshot_energy(s.solution, t);
@@ -72,7 +74,7 @@ size_t force_subdivide(SolverState& s, int32_t polygon, const VisibilityBackend&
     ++s.stats.subdivisions;
   }
   vs.resize(m.vertex_count());
-  std::vector<Vec3>& factors = s.solution.texture_factors[size_t(polygon)];
+  std::vector<TextureFactors>& factors = s.solution.texture_factors[size_t(polygon)];
   if (!factors.empty()) {
     factors.resize(m.vertex_count());
     const Triangles& tris = s.solution.hierarchy->triangles;

@@ -136,7 +136,7 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
         const bool sharing = shares_vertices(s.scene.clusters, p);
         PolygonMesh& m = s.solution.mesh.polygons[p];
         std::vector<VertexState>& vs = s.solution.vertex_states[p];
-        std::vector<Vec3>& factors = s.solution.texture_factors[p];
+        std::vector<TextureFactors>& factors = s.solution.texture_factors[p];
         auto consider = [&](uint32_t e) {
           const uint32_t v[3] = {m.elements[e].v[0], m.elements[e].v[1], m.elements[e].v[2]};
           std::array<bool, 3> d;
@@ -170,8 +170,9 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
               mid.irradiance = (a.irradiance + b.irradiance) * 0.5f;
               mid.unshot = (a.unshot + b.unshot) * 0.5f;
               if (!factors.empty()) {
-                mid.unshot = to_reflectance(mid.unshot, (factors[c.a] + factors[c.b]) * 0.5f,
-                                            factors[c.vertex]);
+                mid.unshot = to_reflectance(
+                    mid.unshot, (factors[c.a].reflectance + factors[c.b].reflectance) * 0.5f,
+                    factors[c.vertex].reflectance);
               }
               mid.last_gain = (a.last_gain + b.last_gain) * 0.5f;
               mid.major = (a.major + b.major) * 0.5f;
@@ -283,11 +284,13 @@ void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBa
         s.scene.buried.is_moved(x.polygon, x.a) ? a.unshot : a.unshot - rho_a * a.last_gain;
     const Vec3 b_u =
         s.scene.buried.is_moved(x.polygon, x.b) ? b.unshot : b.unshot - rho_b * b.last_gain;
-    const std::vector<Vec3>& factors = s.solution.texture_factors[x.polygon];
+    const std::vector<TextureFactors>& factors = s.solution.texture_factors[x.polygon];
     const Vec3 earlier_u =
-        factors.empty() ? (a_u + b_u) * 0.5f
-                        : to_reflectance((a_u + b_u) * 0.5f, (factors[x.a] + factors[x.b]) * 0.5f,
-                                         factors[x.vertex]);
+        factors.empty()
+            ? (a_u + b_u) * 0.5f
+            : to_reflectance((a_u + b_u) * 0.5f,
+                             (factors[x.a].reflectance + factors[x.b].reflectance) * 0.5f,
+                             factors[x.vertex].reflectance);
     const bool buried = s.scene.buried.is_moved(x.polygon, x.vertex);
     mid.irradiance = earlier_h + dh;
     mid.unshot = buried ? earlier_u : earlier_u + rho * dh;
@@ -309,8 +312,8 @@ void refine_after_edit(SolverState& s, const Vec3& d_rho, const VisibilityBacken
                x.polygon, x.vertex, s.solution.mesh.polygons[x.polygon].positions[x.vertex]);
            mid.irradiance = regather_shots(s, at, x.polygon, false, vis, settings, sc, &mid.major);
            // Unshot: the edit's part d_rho * H exact, the rest interpolated (transient).
-           const std::vector<Vec3>& f = s.solution.texture_factors[x.polygon];
-           auto d_rho_at = [&](uint32_t v) { return f.empty() ? d_rho : d_rho * f[v]; };
+           const std::vector<TextureFactors>& f = s.solution.texture_factors[x.polygon];
+           auto d_rho_at = [&](uint32_t v) { return f.empty() ? d_rho : d_rho * f[v].reflectance; };
            mid.unshot =
                (a.unshot - d_rho_at(x.a) * a.irradiance + b.unshot - d_rho_at(x.b) * b.irradiance) *
                0.5f;

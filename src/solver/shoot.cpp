@@ -120,7 +120,7 @@ const Receivers& shoot_to_receivers(SolverState& s, const ShotSource& src,
       std::vector<VertexState>& vs = s.solution.vertex_states[p];
       const Vec3 n = tris.normal[p], centroid = tris.centroid(p);
       const Vec3 rho = s.solution.material_of(p).reflectance;
-      const std::vector<Vec3>& factors = s.solution.texture_factors[p];
+      const std::vector<TextureFactors>& factors = s.solution.texture_factors[p];
       const GatherSettings own = receiver_settings(settings, s, p);
       // A shared vertex is skipped when the one that gathers for it is in a received polygon.
       const std::vector<VertexCopy>& copies = shared.copies[p];
@@ -135,7 +135,8 @@ const Receivers& shoot_to_receivers(SolverState& s, const ShotSource& src,
         const Vec3 at = s.scene.buried.gather_point(p, v, mesh.positions[v]);
         const Vec3 dh =
             gather_from_source(at, n, centroid, src, vis, own, sc, kept ? &rays : nullptr);
-        x.receive(dh, factors.empty() ? rho : rho * factors[v], major, at == mesh.positions[v]);
+        x.receive(dh, factors.empty() ? rho : rho * factors[v].reflectance, major,
+                  at == mesh.positions[v]);
       }
     }
   });

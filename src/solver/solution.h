@@ -5,6 +5,7 @@
 
 #include "hierarchy/hierarchy.h"
 #include "mesh/patch_mesh.h"
+#include "solver/texture_factors.h"
 
 namespace rad {
 
@@ -38,9 +39,9 @@ struct Solution {
   std::vector<std::vector<VertexState>> vertex_states;
   /// Materials per hierarchy object (copied so they can be edited between shots).
   std::vector<Material> materials;
-  /// Per polygon that reflects by a texture, per vertex: its texture factor
+  /// Per polygon that reflects or emits by a texture, per vertex: its texture factors
   /// (solver/texture_factors.h), fixed when the vertex is made; empty for other polygons.
-  std::vector<std::vector<Vec3>> texture_factors;
+  std::vector<std::vector<TextureFactors>> texture_factors;
 
   const Material& material_of(size_t polygon) const {
     return materials[size_t(hierarchy->triangles.object[polygon])];
@@ -52,11 +53,16 @@ struct Solution {
   /// The reflectance rho of vertex v of polygon p: its material's, times its texture factor.
   Vec3 reflectance(size_t p, uint32_t v) const {
     const Vec3 rho = material_of(p).reflectance;
-    return texture_factors[p].empty() ? rho : rho * texture_factors[p][v];
+    return texture_factors[p].empty() ? rho : rho * texture_factors[p][v].reflectance;
+  }
+  /// The emission E of vertex v of polygon p: its material's, times its texture factor.
+  Vec3 emission(size_t p, uint32_t v) const {
+    const Vec3 e = material_of(p).emission;
+    return texture_factors[p].empty() ? e : e * texture_factors[p][v].emission;
   }
   /// Radiosity B = E + rho * H of vertex v of polygon p.
   Vec3 radiosity(size_t p, uint32_t v) const {
-    return material_of(p).emission + reflectance(p, v) * vertex_states[p][v].irradiance;
+    return emission(p, v) + reflectance(p, v) * vertex_states[p][v].irradiance;
   }
 };
 

@@ -91,6 +91,10 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   for (size_t t = 0; t < h.triangles.size(); ++t) {
     const Vec3 e = sol.material_of(t).emission;
     sol.vertex_states[t].assign(sol.mesh.polygons[t].vertex_count(), VertexState{.unshot = e});
+    if (!sol.texture_factors[t].empty()) {
+      for (uint32_t v = 0; v < sol.vertex_states[t].size(); ++v)
+        sol.vertex_states[t][v].unshot = sol.emission(t, v);
+    }
     energy.unshot_energy[t] = polygon_unshot_energy(sol, t);
     energy.emitted_energy += energy.unshot_energy[t].sum;
     total_area += h.triangles.area[t];

@@ -124,7 +124,7 @@ ShotSource read_shot(ByteReader& r, size_t clusters, const std::vector<Light>& l
 }
 
 void write_polygon(ByteWriter& w, const PolygonMesh& p, const std::vector<VertexState>& states,
-                   const std::vector<Vec3>& texture_factors,
+                   const std::vector<TextureFactors>& texture_factors,
                    const std::vector<VertexCopy>& copies) {
   w.vec(p.positions);
   w.vec(states);
@@ -143,7 +143,7 @@ void write_polygon(ByteWriter& w, const PolygonMesh& p, const std::vector<Vertex
 }
 
 void read_polygon(ByteReader& r, PolygonMesh& p, std::vector<VertexState>& states,
-                  std::vector<Vec3>& texture_factors, std::vector<VertexCopy>& copies,
+                  std::vector<TextureFactors>& texture_factors, std::vector<VertexCopy>& copies,
                   size_t polygons, bool textured) {
   r.vec(p.positions);
   r.vec(states);

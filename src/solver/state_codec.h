@@ -82,12 +82,13 @@ ShotSource read_shot(ByteReader& r, size_t clusters, const std::vector<Light>& l
 /// A polygon's mesh, its vertex states, its texture factors (solution.h) and its vertices that
 /// copy another's gain (solver_state.h).
 void write_polygon(ByteWriter& w, const PolygonMesh& p, const std::vector<VertexState>& states,
-                   const std::vector<Vec3>& texture_factors, const std::vector<VertexCopy>& copies);
+                   const std::vector<TextureFactors>& texture_factors,
+                   const std::vector<VertexCopy>& copies);
 /// Throws rad::Error when an index of the record is out of range or `textured` differs from
 /// whether it has texture factors (a copy's vertex in the polygon it copies from is the caller's
 /// to check, once every polygon is read).
 void read_polygon(ByteReader& r, PolygonMesh& p, std::vector<VertexState>& states,
-                  std::vector<Vec3>& texture_factors, std::vector<VertexCopy>& copies,
+                  std::vector<TextureFactors>& texture_factors, std::vector<VertexCopy>& copies,
                   size_t polygons, bool textured);
 
 }  // namespace rad

@@ -7,11 +7,12 @@
 namespace rad {
 
 bool is_textured(const Triangles& t, size_t p, const SceneObject& o) {
-  return (o.base_texture || o.cutout) && p < t.uv.size() && std::isfinite(t.uv[p][0].x);
+  return (o.base_texture || o.emissive_texture || o.cutout) && p < t.uv.size() &&
+         std::isfinite(t.uv[p][0].x);
 }
 
-Vec3 texture_factor(const Triangles& t, size_t p, const SceneObject& o, const Vec3& position,
-                    float element_area) {
+TextureFactors texture_factor(const Triangles& t, size_t p, const SceneObject& o,
+                              const Vec3& position, float element_area) {
   const std::array<Vec3, 3>& c = t.corners[p];
   const std::array<Vec2, 3>& uv = t.uv[p];
   // Barycentric coordinates by sub-triangle areas, in double: the position lies in the plane.
@@ -32,26 +33,32 @@ Vec3 texture_factor(const Triangles& t, size_t p, const SceneObject& o, const Ve
   auto width_in = [&](const TextureImage& image) {
     return float(std::sqrt(2.0 * uv_area * double(image.width()) * double(image.height())));
   };
-  Vec3 f(1.0f);
-  if (o.base_texture) {
-    const TextureImage& image = *o.base_texture.image;
-    const Vec4 s = sample_texture(o.base_texture, at, width_in(image));
+  auto over_mean = [&](const TextureMap& texture) {
+    Vec3 f(1.0f);
+    if (!texture) return f;
+    const TextureImage& image = *texture.image;
+    const Vec4 s = sample_texture(texture, at, width_in(image));
     for (int k = 0; k < 3; ++k) {
       if (image.mean[k] > 0.0f) f[k] = s[k] / image.mean[k];
     }
+    return f;
+  };
+  TextureFactors f{over_mean(o.base_texture), over_mean(o.emissive_texture)};
+  if (o.cutout) {
+    const float opaque = opaque_fraction(o.cutout, at, width_in(*o.cutout.texture.image));
+    f.reflectance *= opaque, f.emission *= opaque;
   }
-  if (o.cutout) f *= opaque_fraction(o.cutout, at, width_in(*o.cutout.texture.image));
   return f;
 }
 
-std::vector<Vec3> initial_texture_factors(const Triangles& t, size_t p, const SceneObject& o,
-                                          const PolygonMesh& mesh) {
+std::vector<TextureFactors> initial_texture_factors(const Triangles& t, size_t p,
+                                                    const SceneObject& o, const PolygonMesh& mesh) {
   std::vector<float> area(mesh.vertex_count(), std::numeric_limits<float>::max());
   for_each_leaf(mesh, [&](uint32_t e) {
     const Element& el = mesh.elements[e];
     for (const uint32_t v : el.v) area[v] = std::min(area[v], el.area);
   });
-  std::vector<Vec3> f(mesh.vertex_count());
+  std::vector<TextureFactors> f(mesh.vertex_count());
   for (size_t v = 0; v < f.size(); ++v) f[v] = texture_factor(t, p, o, mesh.positions[v], area[v]);
   return f;
 }

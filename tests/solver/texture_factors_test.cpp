@@ -8,6 +8,7 @@
 #include <stb/stb_image_write.h>
 
 #include <cmath>
+#include <utility>
 
 #include "hierarchy/auto_hierarchy.h"
 #include "scene_builder.h"
@@ -86,6 +87,21 @@ SceneDescription room(const std::shared_ptr<TextureImage>& checker, bool texture
   return d;
 }
 
+// The same room lit by its floor alone: a checker-textured emitter, or squares each emitting
+// their colour.
+SceneDescription room_lit_by_the_floor(const std::shared_ptr<TextureImage>& checker,
+                                       bool textured) {
+  SceneDescription d = room(checker, textured);
+  for (ObjectDescription& o : d.objects) {
+    if (o.name == "lamp") o.material.emission = Vec3(0.0f);
+    if (o.name.rfind("floor", 0) != 0) continue;
+    o.material.emission = o.material.reflectance;
+    o.material.reflectance = Vec3(0.0f);
+    if (textured) o.emissive_texture = std::exchange(o.base_texture, {});
+  }
+  return d;
+}
+
 // A vertex value (radiosity, or irradiance when `arriving`) integrated over the leaves of the
 // polygons `pick` selects, into the bin of each leaf's centroid.
 template <typename Pick, typename Bin>
@@ -119,14 +135,14 @@ TEST(TextureFactors, AVertexReadsItsTexelWhenSmallAndTheMeanWhenItCoversTheImage
   ASSERT_FALSE(is_textured(h.triangles, 0, h.objects.front()));
   const SceneObject& t = h.objects.back();
   // The middle of square (0, 0), light; of square (1, 0), dark. A tiny element reads the texel.
-  const Vec3 light = texture_factor(h.triangles, floor, t, {0.125f, 0, 0.125f}, 1e-6f);
-  const Vec3 dark = texture_factor(h.triangles, floor, t, {0.375f, 0, 0.125f}, 1e-6f);
+  const Vec3 light = texture_factor(h.triangles, floor, t, {0.125f, 0, 0.125f}, 1e-6f).reflectance;
+  const Vec3 dark = texture_factor(h.triangles, floor, t, {0.375f, 0, 0.125f}, 1e-6f).reflectance;
   const Vec4 texel_light = checker->levels[0].texels[8 * kTexels + 8];
   EXPECT_NEAR(light.x * checker->mean.x, texel_light.x, 1e-5f);
   EXPECT_GT(light.x, 1.0f);
   EXPECT_LT(dark.x, 1.0f);
   // An element as large as the floor: the whole checker's mean, a factor of 1.
-  const Vec3 whole = texture_factor(h.triangles, floor, t, {0.5f, 0, 0.5f}, 1.0f);
+  const Vec3 whole = texture_factor(h.triangles, floor, t, {0.5f, 0, 0.5f}, 1.0f).reflectance;
   EXPECT_NEAR(whole.x, 1.0f, 1e-3f);
   EXPECT_NEAR(whole.z, 1.0f, 1e-3f);
 }
@@ -207,6 +223,53 @@ TEST(TextureFactors, ACheckerFloorSolvesAsTheFloorCutIntoColouredSquares) {
       const double contrast = std::abs(floor_s[0][k] - floor_s[1][k]);
       EXPECT_LT(std::abs(floor_t[c][k] - floor_s[c][k]), 0.25 * contrast)
           << "square " << c << " channel " << k;
+    }
+  }
+}
+
+TEST(TextureFactors, ACheckerEmitterLightsAsTheEmitterCutIntoColouredSquares) {
+  const auto checker = checker_image();
+  ASSERT_TRUE(checker);
+  const Hierarchy ht = build_hierarchy(room_lit_by_the_floor(checker, true));
+  const Hierarchy hs = build_hierarchy(room_lit_by_the_floor(checker, false));
+  const auto vt = make_visibility_backend(BackendKind::Embree, ht);
+  const auto vs = make_visibility_backend(BackendKind::Embree, hs);
+  SolverOptions o;
+  const SolverState st = solve_shots(ht, *vt, o, 400);
+  const SolverState ss = solve_shots(hs, *vs, o, 400);
+
+  auto named = [](const Hierarchy& h, const char* name) {
+    return [&h, name](size_t p) { return h.objects[size_t(h.triangles.object[p])].name == name; };
+  };
+  auto on_floor = [](const Hierarchy& h) {
+    return [&h](size_t p) {
+      return h.objects[size_t(h.triangles.object[p])].name.rfind("floor", 0) == 0;
+    };
+  };
+  auto cell = [](const Vec3& c) {
+    const int i = std::clamp(int(c.x * kSquares), 0, kSquares - 1);
+    const int j = std::clamp(int(c.z * kSquares), 0, kSquares - 1);
+    return size_t(i * kSquares + j);
+  };
+  // The floor emits the same power, square by square.
+  const auto floor_t = integrate(st, on_floor(ht), cell, kSquares * kSquares);
+  const auto floor_s = integrate(ss, on_floor(hs), cell, kSquares * kSquares);
+  DVec3 total_t(0.0), total_s(0.0);
+  for (size_t c = 0; c < floor_t.size(); ++c) {
+    total_t += floor_t[c], total_s += floor_s[c];
+    for (int k = 0; k < 3; ++k) {
+      const double contrast = std::abs(floor_s[0][k] - floor_s[1][k]);
+      EXPECT_LT(std::abs(floor_t[c][k] - floor_s[c][k]), 0.25 * contrast)
+          << "square " << c << " channel " << k;
+    }
+  }
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(total_t[k] / total_s[k], 1.0, 0.005) << "channel " << k;
+  // The ceiling above receives the same light, cell by cell.
+  const auto ceiling_t = integrate(st, named(ht, "ceiling"), cell, kSquares * kSquares, true);
+  const auto ceiling_s = integrate(ss, named(hs, "ceiling"), cell, kSquares * kSquares, true);
+  for (size_t c = 0; c < ceiling_t.size(); ++c) {
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(ceiling_t[c][k] / ceiling_s[c][k], 1.0, 0.01) << "cell " << c << " channel " << k;
     }
   }
 }
