@@ -170,14 +170,15 @@ struct Solving {
 // writes a solution. `images`: whether the mode takes --image (rad batch names its by --formats).
 struct Showing {
   // Every default comes from the struct that owns it (OutputOptions, Camera).
-  std::string tonemap = to_string(OutputOptions{}.tonemap), camera, false_colour;
+  std::string tonemap = to_string(OutputOptions{}.tonemap), camera, false_colour,
+              render = OutputOptions{}.render == ImageRender::Final ? "final" : "preview";
   double false_colour_max = 0.0;
   int false_colour_log = 0;
   CLI::Option *max_option = nullptr, *log_option = nullptr;
   std::string size =
       fmt::format("{}x{}", OutputOptions{}.image_width, OutputOptions{}.image_height);
 
-  void add_to(CLI::App& app, OutputOptions& o, bool images) {
+  void add_to(CLI::App& app, OutputOptions& o, bool images, bool final_render) {
     app.add_flag("--ascii", o.ascii, "Write text PLY instead of binary");
     app.add_flag("!--no-ambient", o.ambient,
                  "Display colours without Cohen's ambient term (the stored radiosity never has "
@@ -202,6 +203,17 @@ struct Showing {
                     "up +y (default: frames the scene from its open side; fov {})",
                     kDefaultFovDeg));
     app.add_option("--size", size, "Image size WxH in pixels")->capture_default_str();
+    if (final_render) {
+      app.add_option("--render", render,
+                     "How images are made: final (each pixel gathers its direct light afresh "
+                     "and reads the bounced light from the solution: sharp shadows and "
+                     "textures) or preview (the solved mesh's colours, interpolated: fast)")
+          ->capture_default_str();
+      app.add_option("--pixel-samples", o.pixel_samples,
+                     "Final render: samples per pixel along each side (2: 4 per pixel)")
+          ->check(CLI::Range(1, 16))
+          ->capture_default_str();
+    }
     app.add_option("--false-colour", false_colour,
                    "lux: images show the illuminance (the luminance of the light arriving) in "
                    "false colour, dark blue to red, with a legend on their left (after "
@@ -228,6 +240,11 @@ struct Showing {
       throw CLI::ValidationError("--camera", e.message());
     }
     apply_false_colour(o);
+    if (render != "final" && render != "preview") {
+      throw CLI::ValidationError("--render",
+                                 fmt::format("expected final or preview, got {}", render));
+    }
+    o.render = render == "final" ? ImageRender::Final : ImageRender::Preview;
     char x = 0, end = 0;
     if (std::sscanf(size.c_str(), "%d%c%d%c", &o.image_width, &x, &o.image_height, &end) != 3 ||
         x != 'x' || o.image_width < 1 || o.image_height < 1 || o.image_width > kMaxImageSize ||
@@ -363,7 +380,8 @@ struct SolvingMode {
 
   void add_to(CLI::App& app, CommandLine& c, bool time_limit, bool images, bool memory) {
     solving.add_to(app, c.run, time_limit);
-    showing.add_to(app, c.job.outputs, images);
+    // A job (not rad serve, whose images are drawn from its live mesh) may render by final gather.
+    showing.add_to(app, c.job.outputs, images, /*final_render=*/memory);
     reading.add_to(app, kEmitHelp, kHierarchyHelp);
     unit_option = app.add_option("--unit", unit,
                                  "Metres per scene unit of a description, OBJ or PLY scene (0.001: "

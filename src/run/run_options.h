@@ -33,14 +33,20 @@ struct RunOptions {
   bool quiet = false;
 };
 
+enum class ImageRender : uint8_t { Final, Preview };
+
 /// What is written from a solution: the mesh, images, and how their colours are shown.
 struct OutputOptions {
   std::string mesh;                 // empty: no mesh file
   std::vector<std::string> images;  // .png, .hdr, .exr or .pfm
   std::optional<Camera> camera;     // none: default_camera frames the scene
   int image_width = 800, image_height = 800;
-  bool ascii = false;   // PLY as text
-  bool ambient = true;  // display colours include Cohen's ambient term
+  // How images are made: a final gather at every pixel (export/gathered_image.h), or the
+  // Gouraud raster of the mesh (export/image_render.h), the fast preview.
+  ImageRender render = ImageRender::Final;
+  int pixel_samples = 2;  // final gather: subsamples per pixel along each axis
+  bool ascii = false;     // PLY as text
+  bool ambient = true;    // display colours include Cohen's ambient term
   ToneCurve tonemap = ToneCurve::Clamp;
   float exposure = 0.0f;  // stops added to the automatic exposure
   // --false-colour lux: every image shows the illuminance (the luminance of H) in false colour

@@ -232,14 +232,17 @@ StopReason solve_job(SolverState& state, const PreparedSolve& prepared, const Ru
 // The mesh, the images and the statistics (last: rad batch takes a stats file with this job's
 // fingerprint to mean every output is there), all or none. Sets times.write and times.total.
 void write_job_outputs(const RunOptions& run, const SceneJob& job, const SolverState& state,
-                       StopReason stop, uint64_t job_id, const std::vector<RankReport>& reports,
-                       Clock::time_point start, RunTimes& times, const Say& say) {
+                       const VisibilityBackend& vis, StopReason stop, uint64_t job_id,
+                       const std::vector<RankReport>& reports, Clock::time_point start,
+                       RunTimes& times, const Say& say) {
   const auto t = Clock::now();
   const OutputMesh mesh = make_output_mesh(state, job.outputs.ambient);
   StagedFiles files;
-  const std::optional<Camera> camera = write_outputs(
-      mesh, job.outputs,
-      scene_tone_map(state, mesh.display, job.outputs.tonemap, job.outputs.exposure), say, files);
+  const SolvedScene solved{state, vis, run.quiet};
+  const std::optional<Camera> camera =
+      write_outputs(mesh, job.outputs,
+                    scene_tone_map(state, mesh.display, job.outputs.tonemap, job.outputs.exposure),
+                    say, files, &solved);
   times.write = since(t);
   times.total = since(start);
   if (!job.stats_json.empty()) {
@@ -307,7 +310,8 @@ SceneJobResult run_scene_job(const RunOptions& run, const SceneJob& job, Ranks* 
   progress.finish(fmt::format("{} after {} shots", to_string(stop), state.shots.count));
   say_why_stopped(stop, memory_limit, job, say);
 
-  write_job_outputs(run, job, state, stop, job_id, reports, start, times, say);
+  write_job_outputs(run, job, state, prepared.visibility(), stop, job_id, reports, start, times,
+                    say);
   if (!quiet) std::fputs(format_statistics(state, times.total).c_str(), stdout);
   // A scene lit by lights has its light in lux: what a lighting designer looks at first.
   if (!quiet && !state.solution.hierarchy->lights.empty())

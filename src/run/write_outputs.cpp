@@ -3,8 +3,10 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/progress.h"
 #include "export/camera.h"
 #include "export/false_colour.h"
+#include "export/gathered_image.h"
 #include "export/image_file.h"
 #include "export/image_render.h"
 #include "export/mesh_file.h"
@@ -50,7 +52,7 @@ void check_outputs(const OutputOptions& o) {
 std::optional<Camera> write_outputs(const OutputMesh& mesh, const OutputOptions& o,
                                     const ToneMap& tone,
                                     const std::function<void(const std::string&)>& say,
-                                    StagedFiles& files) {
+                                    StagedFiles& files, const SolvedScene* solved) {
   if (!o.mesh.empty()) {
     say(fmt::format("Writing results in file {}", o.mesh));
     MeshFileOptions mo;
@@ -69,6 +71,21 @@ std::optional<Camera> write_outputs(const OutputMesh& mesh, const OutputOptions&
   if (o.false_colour) {
     image = false_colour_image(mesh, o, camera, ro, say);
     shown = ToneMap{.scale = 1.0f, .curve = ToneCurve::Clamp};  // the palette as it is
+  } else if (o.render == ImageRender::Final && solved) {
+    GatheredImageOptions go;
+    go.width = ro.width, go.height = ro.height;
+    go.samples = o.pixel_samples;
+    if (o.ambient) go.ambient = ambient_radiosity(solved->state.energy, solved->state.solution);
+    GatheredImageStats stats;
+    Progress progress(solved->quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);
+    image = render_gathered_image(solved->state, solved->vis, camera, go, &stats,
+                                  [&](double done) { progress.update(done, "final gather"); });
+    progress.finish(
+        fmt::format("Final gather: {}x{} pixels, {} per pixel, in {:.2f} s ({} camera "
+                    "rays, {} shadow rays)",
+                    go.width, go.height, go.samples * go.samples, stats.seconds, stats.camera_rays,
+                    stats.shadow_rays));
+    warn_if_black(image, tone, o.images.front(), camera);
   } else {
     image = render_image(mesh.position(), mesh.display, mesh.indices(), camera, ro);
     warn_if_black(image, tone, o.images.front(), camera);

@@ -10,8 +10,17 @@
 #include "export/tonemap.h"
 #include "run/output_files.h"
 #include "run/run_options.h"
+#include "visibility/backend.h"
 
 namespace rad {
+
+/// What a final gather renders from: the solved state and the visibility it was solved with;
+/// `quiet`: no progress bar.
+struct SolvedScene {
+  const SolverState& state;
+  const VisibilityBackend& vis;
+  bool quiet = false;
+};
 
 /// Refuses, before any work is done, a mesh or image name whose extension no writer takes, or
 /// one that cannot be written (check_writable). Throws rad::Error.
@@ -21,11 +30,12 @@ void check_outputs(const OutputOptions& o);
 /// caller commits, with any other output of the run); images through o.camera (or
 /// default_camera) at o.image_width x o.image_height, or with o.false_colour the luminance of
 /// the light arriving in false colour with a legend at their left (render_false_colour). `say`
-/// is told each file's name first.
+/// is told each file's name first. With o.render Final and `solved` given, images are rendered
+/// by final gather (render_gathered_image); else (or in false colour) by the raster of `mesh`.
 /// Returns the camera the images were rendered through (none without images).
 std::optional<Camera> write_outputs(const OutputMesh& mesh, const OutputOptions& o,
                                     const ToneMap& tone,
                                     const std::function<void(const std::string&)>& say,
-                                    StagedFiles& files);
+                                    StagedFiles& files, const SolvedScene* solved = nullptr);
 
 }  // namespace rad

@@ -73,7 +73,11 @@ int sample_grid_for(const SolverState& s, float extent) {
   return int(std::clamp(wanted, first, last));
 }
 
-ShotSource make_shot_source(const SolverState& s, int32_t c) {
+namespace {
+
+// make_shot_source with the radiosity the source shoots read by value(polygon, vertex).
+template <typename Value>
+ShotSource make_cluster_source(const SolverState& s, int32_t c, Value value) {
   const Triangles& tris = s.solution.hierarchy->triangles;
   const Clusters& clusters = s.scene.clusters;
   const size_t ci = size_t(c);
@@ -108,8 +112,7 @@ ShotSource make_shot_source(const SolverState& s, int32_t c) {
     for (const Vec3& w : s.scene.barycentric_grids[size_t(q)]) {
       fine.push_back({c3[0] * w.x + c3[1] * w.y + c3[2] * w.z, tris.normal[t],
                       interpolate_at(
-                          s.solution.mesh.polygons[t],
-                          [&](uint32_t v) { return s.solution.vertex_states[t][v].unshot; }, w),
+                          s.solution.mesh.polygons[t], [&](uint32_t v) { return value(t, v); }, w),
                       piece});
     }
   }
@@ -178,6 +181,18 @@ ShotSource make_shot_source(const SolverState& s, int32_t c) {
   src.single_distance = kSingleExtents * src.extent;
   src.far_distance = kFarFieldExtents * src.extent;
   return src;
+}
+
+}  // namespace
+
+ShotSource make_shot_source(const SolverState& s, int32_t c) {
+  return make_cluster_source(
+      s, c, [&](uint32_t t, uint32_t v) { return s.solution.vertex_states[t][v].unshot; });
+}
+
+ShotSource make_emission_source(const SolverState& s, int32_t c) {
+  return make_cluster_source(s, c,
+                             [&](uint32_t t, uint32_t v) { return s.solution.emission(t, v); });
 }
 
 namespace {

@@ -144,6 +144,10 @@ int sample_grid_for(const SolverState& s, float extent);
 /// stratum's point nearest the centroid of its unshot power, which lies on the surface).
 ShotSource make_shot_source(const SolverState& s, int32_t c);
 
+/// Cluster c frozen the same way as the source of its own emission E (its textures' included)
+/// rather than its unshot radiosity: the direct light it gives (direct_light.h).
+ShotSource make_emission_source(const SolverState& s, int32_t c);
+
 /// The draw of 64 random bits: their top 23 bits plus a half, over 2^23, in (0, 1) and exact in
 /// a float (at most 1 - 2^-24; 24 bits plus a half would round the largest up to 1).
 float open_unit_draw(uint64_t bits);

@@ -1,0 +1,128 @@
+#include "solver/direct_light.h"
+
+#include <cassert>
+#include <cmath>
+
+#include "solver/light_source.h"
+#include "solver/shoot.h"
+#include "visibility/segment.h"
+
+namespace rad {
+
+namespace {
+
+// splitmix64: set k's draw for stratum g of a source, the same on every run and thread.
+uint64_t mix(uint64_t z) {
+  z += 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+// Set k's ends for `src`: each stratum's ray ends at one of the stratum's fine points, drawn
+// with probability proportional to its power (area x |mean channel|), or to its area where the
+// stratum has none; moved off the surface as the solver's ends are.
+void draw_ends(const ShotSource& src, uint32_t k, float offset, std::vector<float>& out) {
+  const size_t n = src.end_x.size();
+  out.assign(3 * n, 0.0f);
+  for (size_t g = 0; g < n; ++g)
+    out[g] = src.end_x[g], out[n + g] = src.end_y[g], out[2 * n + g] = src.end_z[g];
+  const SampleLanes& f = src.fine_sample;
+  const size_t lanes = SampleLanes::kLanes;
+  // Each stratum's lanes are one run of groups of lanes (make_shot_source).
+  size_t group = 0;
+  const size_t groups = src.fine_group_parent.size();
+  while (group < groups) {
+    const uint32_t g = src.fine_group_parent[group];
+    size_t last = group;
+    while (last < groups && src.fine_group_parent[last] == g) ++last;
+    double power = 0.0, area = 0.0;
+    for (size_t i = group * lanes; i < last * lanes; ++i) {
+      power += double(f.area[i]) * std::abs(double(mean_component(f.value(i))));
+      area += double(f.area[i]);
+    }
+    const bool by_power = power > 0.0;
+    const double total = by_power ? power : area;
+    if (total > 0.0 && g < n) {
+      const double draw =
+          (double(mix(uint64_t(k) * 0x100000001b3ull + g) >> 11) + 0.5) * 0x1p-53 * total;
+      double acc = 0.0;
+      size_t pick = group * lanes;
+      for (size_t i = group * lanes; i < last * lanes; ++i) {
+        const double w = by_power ? double(f.area[i]) * std::abs(double(mean_component(f.value(i))))
+                                  : double(f.area[i]);
+        if (w <= 0.0) continue;
+        pick = i;
+        acc += w;
+        if (acc >= draw) break;
+      }
+      const Vec3 end = off_surface(f.point(pick), f.normal(pick), offset);
+      out[g] = end.x, out[n + g] = end.y, out[2 * n + g] = end.z;
+    }
+    group = last;
+  }
+}
+
+}  // namespace
+
+DirectLight make_direct_light(const SolverState& s, uint32_t variants) {
+  assert(variants >= 1);
+  DirectLight d;
+  d.variants = variants;
+  const Clusters& clusters = s.scene.clusters;
+  for (size_t c = 0; c < clusters.size(); ++c) {
+    bool emits = false;
+    for (uint32_t j = clusters.first[c]; j < clusters.first[c + 1] && !emits; ++j) {
+      emits = s.solution.material_of(clusters.polygons[j]).emission != Vec3(0.0f);
+    }
+    if (emits) d.sources.push_back(make_emission_source(s, int32_t(c)));
+  }
+  const Hierarchy& h = *s.solution.hierarchy;
+  for (size_t i = 0; i < h.lights.size(); ++i) {
+    d.sources.push_back(make_light_source(h.lights, int32_t(i), h.lights[i].colour, h.bounds));
+  }
+  d.ends.resize(d.sources.size() * variants);
+  for (size_t i = 0; i < d.sources.size(); ++i) {
+    for (uint32_t k = 0; k < variants; ++k) {
+      std::vector<float>& e = d.ends[i * variants + k];
+      if (d.sources[i].light >= 0) continue;  // a light's rays end at the light
+      if (k == 0) {
+        const ShotSource& src = d.sources[i];
+        e = src.end_x;
+        e.insert(e.end(), src.end_y.begin(), src.end_y.end());
+        e.insert(e.end(), src.end_z.begin(), src.end_z.end());
+      } else {
+        draw_ends(d.sources[i], k, s.scene.shadow_offset, e);
+      }
+    }
+  }
+  return d;
+}
+
+Vec3 direct_gain(const SolverState& s, const DirectLight& d, size_t p, const Vec3& x, const Vec3& n,
+                 uint32_t set, const VisibilityBackend& vis, const GatherSettings& settings,
+                 DirectLightScratch& scratch) {
+  if (scratch.sources.size() != d.sources.size()) {
+    scratch.sources = d.sources;
+    scratch.set.assign(d.sources.size(), 0);
+  }
+  const uint32_t k = set % d.variants;
+  const Vec3 centroid = s.solution.hierarchy->triangles.centroid(p);
+  Vec3 sum(0.0f);
+  for (size_t i = 0; i < scratch.sources.size(); ++i) {
+    ShotSource& src = scratch.sources[i];
+    if (!may_receive(s, p, src)) continue;
+    if (src.light < 0 && scratch.set[i] != k) {
+      const std::vector<float>& e = d.ends[i * d.variants + k];
+      const size_t m = src.end_x.size();
+      std::copy(e.begin(), e.begin() + long(m), src.end_x.begin());
+      std::copy(e.begin() + long(m), e.begin() + long(2 * m), src.end_y.begin());
+      std::copy(e.begin() + long(2 * m), e.end(), src.end_z.begin());
+      scratch.set[i] = k;
+    }
+    sum += gather_from_source(x, n, centroid, src, vis, settings, scratch.gather);
+  }
+  return sum;
+}
+
+}  // namespace rad
