@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "solver/light_source.h"
+#include "solver/occlusion_culling.h"
 #include "solver/shoot.h"
 #include "visibility/segment.h"
 
@@ -81,6 +82,32 @@ DirectLight make_direct_light(const SolverState& s, uint32_t variants) {
   for (size_t i = 0; i < h.lights.size(); ++i) {
     d.sources.push_back(make_light_source(h.lights, int32_t(i), h.lights[i].colour, h.bounds));
   }
+  if (!s.scene.culling.empty()) {
+    // Two passes over the sources' unhidden triangles: count, then place.
+    const size_t n = h.triangles.size();
+    d.lit_first.assign(n + 1, 0);
+    std::vector<uint32_t> seen;
+    auto unhidden = [&](const ShotSource& src) {
+      // The sun lies beyond the planes of all occluders, in no box: it is not culled.
+      if (src.light >= 0 && src.emitter->kind == LightKind::Directional) {
+        seen.resize(n);
+        for (size_t p = 0; p < n; ++p) seen[p] = uint32_t(p);
+      } else {
+        unhidden_triangles(s.scene.culling, src, seen);
+      }
+    };
+    for (const ShotSource& src : d.sources) {
+      unhidden(src);
+      for (uint32_t p : seen) ++d.lit_first[p + 1];
+    }
+    for (size_t p = 0; p < n; ++p) d.lit_first[p + 1] += d.lit_first[p];
+    d.lit_by.resize(d.lit_first[n]);
+    std::vector<uint32_t> next(d.lit_first.begin(), d.lit_first.end() - 1);
+    for (size_t i = 0; i < d.sources.size(); ++i) {
+      unhidden(d.sources[i]);
+      for (uint32_t p : seen) d.lit_by[next[p]++] = uint32_t(i);
+    }
+  }
   d.ends.resize(d.sources.size() * variants);
   for (size_t i = 0; i < d.sources.size(); ++i) {
     for (uint32_t k = 0; k < variants; ++k) {
@@ -109,7 +136,11 @@ Vec3 direct_gain(const SolverState& s, const DirectLight& d, size_t p, const Vec
   const uint32_t k = set % d.variants;
   const Vec3 centroid = s.solution.hierarchy->triangles.centroid(p);
   Vec3 sum(0.0f);
-  for (size_t i = 0; i < scratch.sources.size(); ++i) {
+  const bool listed = !d.lit_first.empty();
+  const size_t first = listed ? d.lit_first[p] : 0;
+  const size_t last = listed ? d.lit_first[p + 1] : d.sources.size();
+  for (size_t j = first; j < last; ++j) {
+    const size_t i = listed ? d.lit_by[j] : j;
     ShotSource& src = scratch.sources[i];
     if (!may_receive(s, p, src)) continue;
     if (src.light < 0 && scratch.set[i] != k) {

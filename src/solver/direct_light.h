@@ -24,6 +24,11 @@ struct DirectLight {
   uint32_t variants = 1;
   /// Per source, per set: the ends, x then y then z (3 x the source's ends each).
   std::vector<std::vector<float>> ends;
+  /// Per polygon p, the sources that may light it: lit_by[lit_first[p] .. lit_first[p + 1]),
+  /// in source order; those it is not hidden from by occlusion culling (occlusion_culling.h:
+  /// what every shadow ray to the source would find blocked), so that in a building a point
+  /// looks at its own room's lamps, not every lamp. Empty without culling: every source.
+  std::vector<uint32_t> lit_first, lit_by;
 };
 
 /// The direct light of `s`'s scene: its emitting clusters (any polygon of non-zero emission) in
