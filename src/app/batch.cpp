@@ -83,6 +83,11 @@ int run_batch(const CommandLine& cmd) {
         "--emit names the materials of a model (.obj, .ply, .gltf, .glb), and every scene of "
         "this batch is a description: give the lamps' objects an Emission line instead");
   }
+  if (cmd.job.input.model.stage && !any_model) {
+    throw Error(
+        "--stage sets a model (.obj, .ply, .gltf, .glb) on a floor under a light, and every "
+        "scene of this batch is a description, which places its own: leave --stage out");
+  }
   fs::create_directories(cmd.batch.dir);
 
   // Names over the whole list, so every shard gives a scene the same one.
@@ -103,7 +108,7 @@ int run_batch(const CommandLine& cmd) {
     const fs::path base = fs::path(cmd.batch.dir) / name;
     SceneJob job = cmd.job;
     job.input.path = scene;
-    if (!is_model_file(scene)) job.input.model.emit.clear();
+    if (!is_model_file(scene)) job.input.model.emit.clear(), job.input.model.stage.reset();
     job.stats_json = base.string() + ".json";
     job.skip_if_done = true;
     if (!mesh_exts.empty()) job.outputs.mesh = base.string() + "." + mesh_exts[0];

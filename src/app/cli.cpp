@@ -16,6 +16,7 @@
 #include "core/memory.h"
 #include "export/image_render.h"
 #include "run/report.h"
+#include "scene/stage.h"
 
 namespace rad {
 
@@ -42,16 +43,33 @@ void parse_shard(const std::string& text, int* index, int* count) {
 
 namespace {
 
-// --emit and --hierarchy: how a scene file is read, for every mode.
+const std::string kStageHelp = fmt::format(
+    "For a model: set it on a grey floor (reflectance {}) under a soft area light scaled to its "
+    "box, giving {:g} lux on the floor below it, and frame it (unless --camera); the model's own "
+    "lights stay",
+    kStageFloorReflectance, kStageIlluminance);
+const std::string kSunHelp = fmt::format(
+    "For a model: --stage outdoors: a sun of {:g} lux at ELEVATION,AZIMUTH degrees (azimuth from "
+    "the front, +z, toward +x; default {:g},{:g}), the area light then a sky of {:g} lux",
+    kStageSunIlluminance, SunAngles{}.elevation_deg, SunAngles{}.azimuth_deg,
+    kStageSkyIlluminance);
+
+// --emit, --stage, --sun and --hierarchy: how a scene file is read, for every mode.
 struct SceneReading {
   std::vector<std::string> emit;
   std::string hierarchy;
+  bool stage = false;
+  std::string sun;
+  CLI::Option* sun_option = nullptr;
 
   void add_to(CLI::App& app, const char* emit_help, const char* hierarchy_help) {
     app.add_option("--emit", emit, emit_help)
         ->expected(1)
         ->allow_extra_args(false)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    app.add_flag("--stage", stage, kStageHelp);
+    // The angles are optional: --sun alone is the default sun.
+    sun_option = app.add_option("--sun", sun, kSunHelp)->expected(0, 1);
     app.add_option("--hierarchy", hierarchy, hierarchy_help);
   }
   // After parsing; throws CLI::ValidationError naming the option.
@@ -60,6 +78,15 @@ struct SceneReading {
       for (const std::string& e : emit) in.model.emit.push_back(parse_emit_rule(e));
     } catch (const Error& e) {
       throw CLI::ValidationError("--emit", e.message());
+    }
+    if (stage || sun_option->count() > 0) {
+      StageOptions o;
+      try {
+        if (sun_option->count() > 0) o.sun = parse_sun_angles(sun);
+      } catch (const Error& e) {
+        throw CLI::ValidationError("--sun", e.message());
+      }
+      in.model.stage = o;
     }
     try {
       if (!hierarchy.empty()) in.hierarchy = parse_hierarchy_mode(hierarchy);
@@ -311,9 +338,10 @@ const char* const kOverview =
     "  rad convert IN OUT                      the scene itself in another format;\n"
     "                                          rad convert --help\n\n"
     "SCENE is a description (.des) or a model (.obj, .ply, .gltf, .glb; name its lamps with\n"
-    "--emit). OUTPUT is a mesh: .ply, .off, .obj, .gltf or .glb.\n\n"
-    "Example:\n"
-    "  rad scenes/cornell_box.des box.ply --image box.png --stats-json box.json\n";
+    "--emit, or light it with --stage). OUTPUT is a mesh: .ply, .off, .obj, .gltf or .glb.\n\n"
+    "Examples:\n"
+    "  rad scenes/cornell_box.des box.ply --image box.png --stats-json box.json\n"
+    "  rad model.glb model.ply --stage --image model.png\n";
 
 const char* const kBatchHelp =
     "rad batch: many scenes solved with the same options. Each scene's outputs are named\n"

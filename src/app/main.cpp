@@ -19,6 +19,7 @@
 #include "run/scene_job.h"
 #include "run/scene_unit.h"
 #include "scene/scene_file.h"
+#include "scene/stage.h"
 #include "solver/ranks.h"
 
 namespace {
@@ -42,7 +43,10 @@ int run(const rad::CommandLine& cmd, rad::Ranks* ranks) {
     case Mode::Check: {
       const SceneInput& in = cmd.job.input;
       check_scene_input(in);
-      std::fputs(summarize(load_scene(in)).c_str(), stdout);
+      const Hierarchy h = load_scene(in);
+      std::fputs(summarize(h).c_str(), stdout);
+      if (h.model && h.model->stage)
+        std::puts(describe_stage(*h.model->stage, metres_per_unit(in)).c_str());
       return kExitDone;
     }
     case Mode::Solve:

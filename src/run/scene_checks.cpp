@@ -7,7 +7,14 @@
 namespace rad {
 
 void check_scene_input(const SceneInput& in) {
-  if (in.model.emit.empty() || is_model_file(in.path)) return;
+  if (is_model_file(in.path)) return;
+  if (in.model.stage) {
+    throw Error(SourceLoc{in.path},
+                "--stage sets a model (.obj, .ply, .gltf, .glb) on a floor under a light; a "
+                "description places its own floor and lights: leave --stage out (rad convert "
+                "MODEL staged.des --stage writes a staged model as a description to start from)");
+  }
+  if (in.model.emit.empty()) return;
   throw Error(SourceLoc{in.path},
               "--emit names the materials of a model (.obj, .ply, .gltf, .glb); in a "
               "description, give the lamp's object an Emission line instead (Emission 10)");

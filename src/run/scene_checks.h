@@ -7,8 +7,9 @@
 
 namespace rad {
 
-/// Refuses --emit for a description: its rules name a model's materials, and a description's
-/// lamps carry an Emission line of their own. Throws rad::Error naming the file.
+/// Refuses --emit and --stage for a description: the rules name a model's materials, and a
+/// description's lamps carry an Emission line of their own, as its floor and lights are its
+/// own objects. Throws rad::Error naming the file.
 void check_scene_input(const SceneInput& in);
 
 /// Whether any triangle of `h` with an area emits light.

@@ -28,6 +28,7 @@
 #include "run/report.h"
 #include "run/scene_checks.h"
 #include "run/scene_unit.h"
+#include "run/stage_camera.h"
 #include "run/write_outputs.h"
 #include "scene/scene_file.h"
 #include "solver/checkpoint.h"
@@ -257,8 +258,9 @@ void write_job_outputs(const RunOptions& run, const SceneJob& job, const SolverS
 
 }  // namespace
 
-SceneJobResult run_scene_job(const RunOptions& run, const SceneJob& job, Ranks* ranks) {
+SceneJobResult run_scene_job(const RunOptions& run, const SceneJob& asked, Ranks* ranks) {
   const auto start = Clock::now();
+  SceneJob job = asked;  // a staged model's camera is known once it is read
   // Under MPI rank 0 speaks and writes; the others solve their share quietly.
   const bool lead = !ranks || ranks->rank() == 0;
   const bool quiet = run.quiet || !lead;
@@ -274,6 +276,14 @@ SceneJobResult run_scene_job(const RunOptions& run, const SceneJob& job, Ranks* 
   say("Reading description file...");
   const Hierarchy hierarchy = load_scene(job.input);
   require_light(hierarchy, job.input, run.solver);
+  if (hierarchy.model && hierarchy.model->stage) {
+    const Stage& stage = *hierarchy.model->stage;
+    say(describe_stage(stage, metres_per_unit(job.input)));
+    if (!job.outputs.camera) {
+      job.outputs.camera = stage_camera(
+          stage, float(job.outputs.image_width) / float(job.outputs.image_height));
+    }
+  }
   times.parse = since(start);
   const uint64_t job_id = job.stats_json.empty() ? 0 : job_fingerprint(run, job, hierarchy);
   if (done_before(job, job_id)) {

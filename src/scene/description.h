@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/math.h"
 #include "scene/light.h"
+#include "scene/stage.h"
 #include "scene/texture.h"
 
 namespace rad {
@@ -107,10 +108,12 @@ struct TextureCounts {
   size_t unread = 0;
 };
 
-/// What a model file held besides its triangles, for the summary of `rad --check`.
+/// What a model file held besides its triangles, for the summary of `rad --check`, and the
+/// stage it was set on (--stage), which the run layer prints and frames.
 struct ModelSummary {
   std::vector<std::string> materials;  // names, in the file's order
   TextureCounts textures;
+  std::optional<Stage> stage;
 };
 
 struct SceneDescription {

@@ -1,11 +1,13 @@
 // A model file as a scene: its groups and materials become the hierarchy of design §3.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "scene/description.h"
 #include "scene/model.h"
+#include "scene/stage.h"
 
 namespace rad {
 
@@ -27,6 +29,9 @@ struct ModelOptions {
   /// With !require_emission: say in a warning that nothing emits and how to light it (rad
   /// --check: the model is fine, the solve would refuse it).
   bool warn_unlit = false;
+  /// --stage (and --sun): the model set on a floor under a light (stage.h), added by
+  /// read_scene_file after the model's own scene; the model then needs no light of its own.
+  std::optional<StageOptions> stage;
 };
 
 /// The scene of a model: an Assembly named after the file, one Composite per group, one Pure per

@@ -8,7 +8,8 @@
 
 namespace rad {
 
-/// Parses a description (parser.h), or reads a model and makes its scene (model_scene.h).
+/// Parses a description (parser.h), or reads a model and makes its scene (model_scene.h), set on
+/// its stage (stage.h) when `model.stage` asks for one.
 /// Throws rad::Error naming the file and, where known, the line.
 SceneDescription read_scene_file(const std::string& path, const ModelOptions& model = {});
 

@@ -900,3 +900,76 @@ TEST(CommandLine, UnitGivesTheMetresOfASceneUnitForLuxAreasAndLumens) {
 }
 
 }  // namespace
+
+namespace {
+
+// --stage lights a model with no light of its own: it solves, says what it staged and frames
+// it; given to a description it is refused (it places its own floor and lights); --sun takes
+// ELEVATION,AZIMUTH or nothing.
+TEST(CommandLine, StageLightsAModelAndIsRefusedForADescription) {
+  const fs::path dir = fs::temp_directory_path() / ("rad_test_stage_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "quad.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+  const std::string obj = (dir / "quad.obj").string(), ply = (dir / "out.ply").string();
+  for (const std::string& flags : {"--stage", "--sun", "--stage --sun 30,60"}) {
+    const RadRun r = run_rad(obj + " " + ply + " " + flags + " --image " +
+                             (dir / "o.png").string() + " --size 64x64 --render preview");
+    EXPECT_EQ(r.code, 0) << flags << ": " << r.err;
+    EXPECT_NE(r.out.find("Stage: floor "), std::string::npos) << r.out;
+    EXPECT_NE((r.out + r.err).find("converged"), std::string::npos) << r.out << r.err;
+    EXPECT_EQ(r.out.find("sun at") != std::string::npos, flags != "--stage") << r.out;
+    EXPECT_TRUE(fs::exists(dir / "o.png"));
+  }
+  // rad convert writes the staged scene as a description to edit.
+  const RadRun c = run_rad("convert " + obj + " " + (dir / "staged.des").string() + " --sun");
+  EXPECT_EQ(c.code, 0) << c.err;
+  const std::string des = read_file(dir / "staged.des");
+  EXPECT_NE(des.find("\"stage floor\""), std::string::npos) << des;
+  EXPECT_NE(des.find("\"stage sun\""), std::string::npos) << des;
+
+  const RadRun bad = run_rad("--sun " + obj + " " + ply);  // the scene taken for its angles
+  EXPECT_EQ(bad.code, rad::kExitUsage);
+  EXPECT_NE(bad.err.find("ELEVATION,AZIMUTH"), std::string::npos) << bad.err;
+
+  const std::string scene = (kScenes / "parallel_squares.des").string();
+  for (const std::string& args :
+       {"--stage " + scene + " " + ply, "--check --sun " + scene,
+        "batch " + (dir / "batch").string() + " " + scene + " --stage",
+        "convert " + scene + " " + (dir / "x.obj").string() + " --stage"}) {
+    const RadRun r = run_rad(args);
+    EXPECT_EQ(r.code, rad::kExitInputError) << args;
+    EXPECT_NE(r.err.find("--stage sets a model"), std::string::npos) << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir / "x.obj"));
+  fs::remove_all(dir);
+}
+
+TEST(CommandLine, ImagesRenderByFinalGatherOrPreviewOverABackgroundOrTransparent) {
+  const std::string scene = (kScenes / "parallel_squares.des").string();
+  const fs::path dir = fs::temp_directory_path() / ("rad_render_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  RadRun r = run_rad("--render sketch " + scene + " " + (dir / "x.ply").string());
+  EXPECT_EQ(r.code, rad::kExitUsage);
+  EXPECT_NE(r.err.find("--render: expected final or preview, got sketch"), std::string::npos)
+      << r.err;
+  r = run_rad("--background 1,2 " + scene + " " + (dir / "x.ply").string());
+  EXPECT_EQ(r.code, rad::kExitUsage);
+  EXPECT_NE(r.err.find("--background: expected R,G,B"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "x.ply"));
+  // The squares seen from afar, the void around them transparent: RGBA, some pixels clear.
+  r = run_rad("-q --size 40x40 --camera 0,0,-10,0,0,0,60 --background transparent --image " +
+              (dir / "t.png").string() + " " + scene + " " + (dir / "t.ply").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  int w = 0, h = 0, n = 0;
+  unsigned char* data = stbi_load((dir / "t.png").string().c_str(), &w, &h, &n, 0);
+  ASSERT_NE(data, nullptr);
+  EXPECT_EQ(n, 4);
+  EXPECT_EQ(data[3], 0);  // the top left corner sees nothing
+  stbi_image_free(data);
+  r = run_rad("-q --size 40x40 --render preview --image " + (dir / "p.png").string() + " " + scene +
+              " " + (dir / "p.ply").string());
+  EXPECT_EQ(r.code, 0) << r.err;
+  fs::remove_all(dir);
+}
+
+}  // namespace
