@@ -198,7 +198,8 @@ struct Solving {
 struct Showing {
   // Every default comes from the struct that owns it (OutputOptions, Camera).
   std::string tonemap = to_string(OutputOptions{}.tonemap), camera, false_colour,
-              render = OutputOptions{}.render == ImageRender::Final ? "final" : "preview";
+              render = OutputOptions{}.render == ImageRender::Final ? "final" : "preview",
+              background = "0,0,0";
   double false_colour_max = 0.0;
   int false_colour_log = 0;
   CLI::Option *max_option = nullptr, *log_option = nullptr;
@@ -240,6 +241,11 @@ struct Showing {
                      "Final render: samples per pixel along each side (2: 4 per pixel)")
           ->check(CLI::Range(1, 16))
           ->capture_default_str();
+      app.add_option("--background", background,
+                     "Final render: what pixels show where nothing is seen: a linear colour R,G,B "
+                     "(radiosity units, as the scene's), or 'transparent' (an alpha channel in "
+                     ".png and .exr)")
+          ->capture_default_str();
     }
     app.add_option("--false-colour", false_colour,
                    "lux: images show the illuminance (the luminance of the light arriving) in "
@@ -272,6 +278,18 @@ struct Showing {
                                  fmt::format("expected final or preview, got {}", render));
     }
     o.render = render == "final" ? ImageRender::Final : ImageRender::Preview;
+    o.transparent = background == "transparent";
+    if (!o.transparent) {
+      float r = 0, g = 0, b = 0;
+      char end = 0;
+      if (std::sscanf(background.c_str(), "%f,%f,%f%c", &r, &g, &b, &end) != 3 ||
+          !std::isfinite(r) || !std::isfinite(g) || !std::isfinite(b) || r < 0 || g < 0 || b < 0) {
+        throw CLI::ValidationError(
+            "--background",
+            fmt::format("expected R,G,B (three numbers >= 0) or transparent, got {}", background));
+      }
+      o.background = Vec3(r, g, b);
+    }
     char x = 0, end = 0;
     if (std::sscanf(size.c_str(), "%d%c%d%c", &o.image_width, &x, &o.image_height, &end) != 3 ||
         x != 'x' || o.image_width < 1 || o.image_height < 1 || o.image_width > kMaxImageSize ||

@@ -79,6 +79,7 @@ Image render_gathered_image(const SolverState& s, const VisibilityBackend& vis,
   const Hierarchy& h = *sol.hierarchy;
   const Triangles& tris = h.triangles;
   Image image(o.width, o.height);
+  if (o.transparent) image.alpha.assign(image.pixels.size(), 0.0f);
   const CameraFrame f = camera_frame(camera, float(o.width) / float(o.height));
   const DirectLight direct = make_direct_light(s, kEndSets);
   const PolygonLocator locator(tris, h.bounds);
@@ -175,12 +176,14 @@ Image render_gathered_image(const SolverState& s, const VisibilityBackend& vis,
         for (size_t x = 0; x < w; ++x) {
           const size_t pixel = size_t(y) * w + x;
           DVec3 sum(0.0);
+          size_t covered = 0;
           for (size_t k = 0; k < spp; ++k) {
             const Hit& hit = hits[(size_t(y - y0) * w + x) * spp + k];
             if (hit.polygon == -1) {
-              sum += DVec3(o.background);
+              if (!o.transparent) sum += DVec3(o.background);
               continue;
             }
+            ++covered;
             if (hit.polygon < 0) continue;
             const size_t p = size_t(hit.polygon);
             const PolygonMesh& m = sol.mesh.polygons[p];
@@ -200,6 +203,7 @@ Image render_gathered_image(const SolverState& s, const VisibilityBackend& vis,
             sum += DVec3(e + rho * (d + indirect));
           }
           image.pixels[pixel] = Vec3(sum / double(spp));
+          if (o.transparent) image.alpha[pixel] = float(covered) / float(spp);
         }
       }
     });

@@ -21,6 +21,9 @@ struct GatheredImageOptions {
   /// (ambient_radiosity), or 0.
   Vec3 ambient{0.0f};
   Vec3 background{0.0f};  // where a ray meets nothing
+  /// Instead of the background, an alpha per pixel: the part of its samples that meet a
+  /// surface (Image::alpha; the colour premultiplied by it).
+  bool transparent = false;
 };
 
 /// What a final gather measured.

@@ -10,6 +10,9 @@ namespace rad {
 struct Image {
   int width = 0, height = 0;
   std::vector<Vec3> pixels;  // linear RGB, row-major, top row first
+  /// Per pixel, the part of it that a surface covers (the colour is premultiplied by it), or
+  /// empty: every pixel opaque.
+  std::vector<float> alpha;
 
   Image() = default;
   Image(int w, int h) : width(w), height(h), pixels(size_t(w) * size_t(h), Vec3(0.0f)) {}

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -26,10 +27,21 @@ void append_to_stream(void* context, void* data, int size) {
 }
 
 void write_png(std::ostream& out, const Image& img, const ToneMap& tm, const std::string& path) {
-  std::vector<uint8_t> rgb(img.pixels.size() * 3);
-  for (size_t i = 0; i < img.pixels.size(); ++i) to_srgb8(img.pixels[i], tm, &rgb[3 * i]);
-  if (!stbi_write_png_to_func(append_to_stream, &out, img.width, img.height, 3, rgb.data(),
-                              img.width * 3)) {
+  // With alpha, RGBA as PNG has it: the colour not premultiplied, the coverage in 8 bits.
+  const int channels = img.alpha.empty() ? 3 : 4;
+  std::vector<uint8_t> rgb(img.pixels.size() * size_t(channels));
+  for (size_t i = 0; i < img.pixels.size(); ++i) {
+    uint8_t* p = &rgb[size_t(channels) * i];
+    if (channels == 3) {
+      to_srgb8(img.pixels[i], tm, p);
+      continue;
+    }
+    const float a = std::clamp(img.alpha[i], 0.0f, 1.0f);
+    to_srgb8(a > 0.0f ? img.pixels[i] / a : Vec3(0.0f), tm, p);
+    p[3] = uint8_t(std::lround(a * 255.0f));
+  }
+  if (!stbi_write_png_to_func(append_to_stream, &out, img.width, img.height, channels, rgb.data(),
+                              img.width * channels)) {
     throw Error(SourceLoc{path}, "PNG encoding failed");
   }
 }
@@ -41,35 +53,40 @@ void write_hdr(std::ostream& out, const Image& img, const std::string& path) {
 }
 
 void write_exr(std::ostream& out, const Image& img, const std::string& path) {
-  // OpenEXR readers expect the channels sorted by name: B, G, R.
+  // OpenEXR readers expect the channels sorted by name: A, B, G, R. Colour premultiplied by
+  // alpha, as OpenEXR has it.
   const size_t n = img.pixels.size();
-  std::vector<float> planes[3];
-  for (auto& p : planes) p.resize(n);
+  const bool alpha = !img.alpha.empty();
+  const int count = alpha ? 4 : 3;
+  std::vector<float> planes[4];
+  for (int c = 0; c < count; ++c) planes[c].resize(n);
+  const int b = alpha ? 1 : 0;
   for (size_t i = 0; i < n; ++i) {
-    planes[0][i] = img.pixels[i].b, planes[1][i] = img.pixels[i].g, planes[2][i] = img.pixels[i].r;
+    if (alpha) planes[0][i] = img.alpha[i];
+    planes[b][i] = img.pixels[i].b, planes[b + 1][i] = img.pixels[i].g;
+    planes[b + 2][i] = img.pixels[i].r;
   }
-  unsigned char* images[3] = {reinterpret_cast<unsigned char*>(planes[0].data()),
-                              reinterpret_cast<unsigned char*>(planes[1].data()),
-                              reinterpret_cast<unsigned char*>(planes[2].data())};
+  unsigned char* images[4];
+  for (int c = 0; c < count; ++c) images[c] = reinterpret_cast<unsigned char*>(planes[c].data());
   EXRImage image;
   InitEXRImage(&image);
-  image.num_channels = 3;
+  image.num_channels = count;
   image.images = images;
   image.width = img.width;
   image.height = img.height;
 
   EXRHeader header;
   InitEXRHeader(&header);
-  EXRChannelInfo channels[3];
+  EXRChannelInfo channels[4];
   std::memset(channels, 0, sizeof channels);
-  int pixel_types[3], requested[3];
-  const char* names[3] = {"B", "G", "R"};
-  for (int c = 0; c < 3; ++c) {
-    std::strncpy(channels[c].name, names[c], sizeof channels[c].name - 1);
+  int pixel_types[4], requested[4];
+  const char* names[4] = {"A", "B", "G", "R"};
+  for (int c = 0; c < count; ++c) {
+    std::strncpy(channels[c].name, names[c + (alpha ? 0 : 1)], sizeof channels[c].name - 1);
     pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
     requested[c] = TINYEXR_PIXELTYPE_FLOAT;
   }
-  header.num_channels = 3;
+  header.num_channels = count;
   header.channels = channels;
   header.pixel_types = pixel_types;
   header.requested_pixel_types = requested;

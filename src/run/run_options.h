@@ -45,8 +45,11 @@ struct OutputOptions {
   // Gouraud raster of the mesh (export/image_render.h), the fast preview.
   ImageRender render = ImageRender::Final;
   int pixel_samples = 2;  // final gather: subsamples per pixel along each axis
-  bool ascii = false;     // PLY as text
-  bool ambient = true;    // display colours include Cohen's ambient term
+  // Final gather: what pixels show where nothing is seen, or transparency (an alpha channel).
+  Vec3 background{0.0f};
+  bool transparent = false;
+  bool ascii = false;   // PLY as text
+  bool ambient = true;  // display colours include Cohen's ambient term
   ToneCurve tonemap = ToneCurve::Clamp;
   float exposure = 0.0f;  // stops added to the automatic exposure
   // --false-colour lux: every image shows the illuminance (the luminance of H) in false colour

@@ -75,6 +75,8 @@ std::optional<Camera> write_outputs(const OutputMesh& mesh, const OutputOptions&
     GatheredImageOptions go;
     go.width = ro.width, go.height = ro.height;
     go.samples = o.pixel_samples;
+    go.background = o.background;
+    go.transparent = o.transparent;
     if (o.ambient) go.ambient = ambient_radiosity(solved->state.energy, solved->state.solution);
     GatheredImageStats stats;
     Progress progress(solved->quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);

@@ -1,5 +1,6 @@
 // The rad executable as a user runs it: exit codes, messages, and what it leaves on disk.
 #include <gtest/gtest.h>
+#include <stb/stb_image.h>
 #include <sys/wait.h>
 #include <unistd.h>
 

@@ -189,6 +189,33 @@ TEST(GatheredImage, AgreesWithTheSolutionItReadsAwayFromShadowEdges) {
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(top_g[c] / top_r[c], 1.0, 0.01) << "channel " << c;
 }
 
+TEST(GatheredImage, WhereNothingIsSeenThePixelsShowTheBackgroundOrAreTransparent) {
+  const Hierarchy h = build_hierarchy(umbra_scene());
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  const SolverState s = solve_shots(h, *vis, SolverOptions{}, 5);
+  GatheredImageOptions o;
+  o.width = o.height = 32;
+  // From above, the 4 x 4 floor fills the middle of the view and the void its corners.
+  const Camera camera{{0.0f, 6.0f, 0.01f}, {0.0f, 0.0f, 0.0f}, {0, 1, 0}, 60.0f};
+  o.background = Vec3(0.25f, 0.5f, 0.75f);
+  const Image coloured = render_gathered_image(s, *vis, camera, o);
+  EXPECT_TRUE(coloured.alpha.empty());
+  EXPECT_EQ(coloured.at(0, 0), o.background);
+  o.transparent = true;
+  const Image transparent = render_gathered_image(s, *vis, camera, o);
+  ASSERT_EQ(transparent.alpha.size(), transparent.pixels.size());
+  EXPECT_EQ(transparent.alpha[0], 0.0f);
+  EXPECT_EQ(transparent.at(0, 0), Vec3(0.0f));
+  const size_t middle = size_t(16) * 32 + 20;  // the floor beside the blocker
+  EXPECT_EQ(transparent.alpha[middle], 1.0f);
+  EXPECT_EQ(transparent.pixels[middle], coloured.pixels[middle]);
+  EXPECT_GT(transparent.pixels[middle].x, 0.0f);
+  // The floor's edge: some samples see it, some the void.
+  size_t partial = 0;
+  for (float a : transparent.alpha) partial += a > 0.0f && a < 1.0f;
+  EXPECT_GT(partial, 0u);
+}
+
 std::shared_ptr<TextureImage> two_colour_image() {
   // 2 x 1 texels: red on the left half, blue on the right.
   const unsigned char p[8] = {200, 40, 40, 255, 40, 40, 200, 255};

@@ -100,6 +100,41 @@ TEST(ImageFile, ExrHoldsExactLinearFloats) {
   std::free(rgba);
 }
 
+TEST(ImageFile, AlphaIsPngsFourthChannelAndExrsAWithTheColourPremultipliedThereOnly) {
+  Image img = gradient();
+  img.alpha.resize(img.pixels.size());
+  for (size_t i = 0; i < img.alpha.size(); ++i) {
+    img.alpha[i] = float(i % 5) / 4.0f;
+    img.pixels[i] *= img.alpha[i];  // premultiplied, as rendered
+  }
+  const ToneMap tm{0.8f, ToneCurve::Clamp};
+  const std::string png = (temp_dir() / "alpha.png").string();
+  write_image_file(png, img, tm);
+  int w = 0, h = 0, n = 0;
+  unsigned char* data = stbi_load(png.c_str(), &w, &h, &n, 0);
+  ASSERT_NE(data, nullptr) << stbi_failure_reason();
+  ASSERT_EQ(n, 4);
+  for (size_t i = 0; i < img.pixels.size(); ++i) {
+    const float a = img.alpha[i];
+    EXPECT_EQ(data[4 * i + 3], uint8_t(std::lround(a * 255.0f))) << i;
+    uint8_t want[3];
+    to_srgb8(a > 0.0f ? img.pixels[i] / a : Vec3(0.0f), tm, want);
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(data[4 * i + size_t(k)], want[k]) << i;
+  }
+  stbi_image_free(data);
+
+  const std::string exr = (temp_dir() / "alpha.exr").string();
+  write_image_file(exr, img, tm);
+  float* rgba = nullptr;
+  const char* err = nullptr;
+  ASSERT_EQ(LoadEXR(&rgba, &w, &h, exr.c_str(), &err), TINYEXR_SUCCESS) << (err ? err : "");
+  for (size_t i = 0; i < img.pixels.size(); ++i) {
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(rgba[4 * i + size_t(k)], img.pixels[i][k]);
+    EXPECT_EQ(rgba[4 * i + 3], img.alpha[i]);
+  }
+  std::free(rgba);
+}
+
 TEST(ImageFile, PfmHoldsExactLinearFloatsBottomRowFirst) {
   const Image img = gradient();
   const std::string path = (temp_dir() / "gradient.pfm").string();
