@@ -125,6 +125,7 @@ void write_stats_json(const std::string& path, const RunOptions& run, const Scen
         {"shoot", s.stats.shoot_seconds},
         {"refine", s.stats.refine_seconds},
         {"write", t.write},
+        {"render", t.render},
         {"total", t.total}}},
       {"seams",
        {{"shared_edges", seams.shared_edges},

@@ -22,6 +22,7 @@ const char* rad_version();
 struct RunTimes {
   double parse = 0, build = 0, solve = 0, write = 0, total = 0;
   double gather = 0;  // MPI: rank 0 taking the ranks' polygons at the end (with the checkpoint)
+  double render = 0;  // images by final gather (within `write`)
 };
 
 /// The statistics block as the original printed it, plus rad's own counters.

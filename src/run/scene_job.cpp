@@ -239,7 +239,7 @@ void write_job_outputs(const RunOptions& run, const SceneJob& job, const SolverS
   const auto t = Clock::now();
   const OutputMesh mesh = make_output_mesh(state, job.outputs.ambient);
   StagedFiles files;
-  const SolvedScene solved{state, vis, run.quiet};
+  const SolvedScene solved{state, vis, run.quiet, &times.render};
   const std::optional<Camera> camera =
       write_outputs(mesh, job.outputs,
                     scene_tone_map(state, mesh.display, job.outputs.tonemap, job.outputs.exposure),
@@ -280,8 +280,8 @@ SceneJobResult run_scene_job(const RunOptions& run, const SceneJob& asked, Ranks
     const Stage& stage = *hierarchy.model->stage;
     say(describe_stage(stage, metres_per_unit(job.input)));
     if (!job.outputs.camera) {
-      job.outputs.camera = stage_camera(
-          stage, float(job.outputs.image_width) / float(job.outputs.image_height));
+      job.outputs.camera =
+          stage_camera(stage, float(job.outputs.image_width) / float(job.outputs.image_height));
     }
   }
   times.parse = since(start);

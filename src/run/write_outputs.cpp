@@ -87,6 +87,7 @@ std::optional<Camera> write_outputs(const OutputMesh& mesh, const OutputOptions&
                     "rays, {} shadow rays)",
                     go.width, go.height, go.samples * go.samples, stats.seconds, stats.camera_rays,
                     stats.shadow_rays));
+    if (solved->render_seconds) *solved->render_seconds = stats.seconds;
     warn_if_black(image, tone, o.images.front(), camera);
   } else {
     image = render_image(mesh.position(), mesh.display, mesh.indices(), camera, ro);

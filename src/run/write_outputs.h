@@ -20,6 +20,7 @@ struct SolvedScene {
   const SolverState& state;
   const VisibilityBackend& vis;
   bool quiet = false;
+  double* render_seconds = nullptr;  // when given, set to the final gather's time
 };
 
 /// Refuses, before any work is done, a mesh or image name whose extension no writer takes, or
