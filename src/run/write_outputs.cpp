@@ -72,6 +72,15 @@ std::optional<Camera> write_outputs(const OutputMesh& mesh, const OutputOptions&
     image = false_colour_image(mesh, o, camera, ro, say);
     shown = ToneMap{.scale = 1.0f, .curve = ToneCurve::Clamp};  // the palette as it is
   } else if (o.render == ImageRender::Final && solved) {
+    // Camera rays go through the shadow-ray backend, which holds only what casts shadows.
+    for (const SceneObject& obj : solved->state.solution.hierarchy->objects) {
+      if (obj.kind == ObjectKind::Pure && obj.triangle_count > 0 && !obj.casts_shadows) {
+        warn(obj.loc, fmt::format("'{}' casts no shadows, so the final render does not see it "
+                                  "either; --render preview shows it",
+                                  obj.name));
+        break;
+      }
+    }
     GatheredImageOptions go;
     go.width = ro.width, go.height = ro.height;
     go.samples = o.pixel_samples;
