@@ -32,12 +32,15 @@ same_bytes() {
   for run in "${runs[@]}"; do
     IFS='|' read -r name ranks scene opts <<<"$run"
     # shellcheck disable=SC2086
-    "$rad" "$scene" "$d/$name.ply" -q --threads 2 $opts || fail "$name: plain run"
+    # The image by final gather too: rank 0 renders from the ranks' polygons.
+    "$rad" "$scene" "$d/$name.ply" -q --threads 2 $opts --image "$d/$name.pfm" --size 40x30 ||
+      fail "$name: plain run"
     for n in $ranks; do
       # shellcheck disable=SC2086
-      mpi "$n" "$scene" "$d/$name-$n.ply" -q --threads 1 $opts --stats-json "$d/$name-$n.json" ||
-        fail "$name: mpirun -np $n"
+      mpi "$n" "$scene" "$d/$name-$n.ply" -q --threads 1 $opts --stats-json "$d/$name-$n.json" \
+        --image "$d/$name-$n.pfm" --size 40x30 || fail "$name: mpirun -np $n"
       cmp "$d/$name.ply" "$d/$name-$n.ply" || fail "$name: $n ranks wrote other bytes"
+      cmp "$d/$name.pfm" "$d/$name-$n.pfm" || fail "$name: $n ranks rendered other pixels"
     done
     echo "$name: $ranks ranks write the plain run's bytes"
   done
