@@ -238,7 +238,7 @@ struct Showing {
                      "textures) or preview (the solved mesh's colours, interpolated: fast)")
           ->capture_default_str();
       app.add_option("--pixel-samples", o.pixel_samples,
-                     "Final render: samples per pixel along each side (2: 4 per pixel)")
+                     "Final render: samples per pixel along each side (3: 9 per pixel)")
           ->check(CLI::Range(1, 16))
           ->capture_default_str();
       app.add_option("--background", background,

@@ -16,7 +16,7 @@ namespace rad {
 
 struct GatheredImageOptions {
   int width = 800, height = 800;  // pixels
-  int samples = 2;                // subsamples per pixel along each axis (2: 4 per pixel)
+  int samples = 3;                // subsamples per pixel along each axis (3: 9 per pixel)
   /// Added to the bounced light everywhere: Cohen's ambient term where a solve stopped short
   /// (ambient_radiosity), or 0.
   Vec3 ambient{0.0f};

@@ -7,6 +7,10 @@ namespace rad {
 
 namespace {
 
+// Triangles merged into one flat surface face the same way to within float rounding; the
+// threshold (about 8 degrees) also keeps a tessellated curve's neighbours apart.
+constexpr float kSameFacing = 0.99f;
+
 // How far x lies from triangle c (its plane's normal n, unit) measured in its plane, as a
 // distance outside its nearest edge (0 inside), and how far from its plane.
 std::pair<float, float> distances(const std::array<Vec3, 3>& c, const Vec3& n, const Vec3& x) {
@@ -42,6 +46,12 @@ PolygonLocator::PolygonLocator(const Triangles& t, const Aabb& bounds) : triangl
 int32_t PolygonLocator::locate(const Vec3& x, const Vec3& front,
                                std::vector<std::pair<uint32_t, int>>& stack) const {
   const Triangles& t = *triangles_;
+  // The surface met lies in the plane of the triangles it was merged from: a triangle beside
+  // it across an edge (the side of a box beside its top) passes within the tolerance of a
+  // point near that edge, but faces another way.
+  const float length = glm::length(front);
+  if (!(length > 0.0f)) return -1;
+  const Vec3 facing = front / length;
   int32_t best = -1;
   float best_score = tolerance_;
   if (tree_.size() == 0) return best;
@@ -54,7 +64,7 @@ int32_t PolygonLocator::locate(const Vec3& x, const Vec3& front,
       [&](uint32_t node) {
         for (uint32_t i = tree_.first[node]; i < tree_.first[node] + tree_.count[node]; ++i) {
           const uint32_t k = tree_.order[i];
-          if (!(glm::dot(t.normal[k], front) > 0.0f)) continue;
+          if (!(glm::dot(t.normal[k], facing) > kSameFacing)) continue;
           const auto [plane, outside] = distances(t.corners[k], t.normal[k], x);
           const float score = std::max(plane, outside);
           if (score < best_score || (score == best_score && (best < 0 || int32_t(k) < best))) {

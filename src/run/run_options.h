@@ -44,7 +44,7 @@ struct OutputOptions {
   // How images are made: a final gather at every pixel (export/gathered_image.h), or the
   // Gouraud raster of the mesh (export/image_render.h), the fast preview.
   ImageRender render = ImageRender::Final;
-  int pixel_samples = 2;  // final gather: subsamples per pixel along each axis
+  int pixel_samples = 3;  // final gather: subsamples per pixel along each axis
   // Final gather: what pixels show where nothing is seen, or transparency (an alpha channel).
   Vec3 background{0.0f};
   bool transparent = false;
