@@ -45,6 +45,8 @@ struct Hit {
 };
 
 struct Scratch {
+  std::vector<Segment> segments;  // a row's camera rays
+  std::vector<SegmentHit> met;
   DirectLightScratch direct;
   std::vector<std::pair<uint32_t, int>> stack;
   VisibilityStats camera;
@@ -110,6 +112,9 @@ Image render_gathered_image(const SolverState& s, const VisibilityBackend& vis,
       const ScopedFlushDenormals ftz;
       Scratch& sc = scratch.local();
       for (int y = r.begin(); y < r.end(); ++y) {
+        // The row's segments, traced in one call.
+        sc.segments.resize(w * spp);
+        sc.met.resize(w * spp);
         for (size_t x = 0; x < w; ++x) {
           const size_t pixel = size_t(y) * w + x;
           for (size_t k = 0; k < spp; ++k) {
@@ -121,22 +126,27 @@ Image render_gathered_image(const SolverState& s, const VisibilityBackend& vis,
             const Vec3 dir =
                 glm::normalize(f.forward + f.right * ((2.0f * u - 1.0f) * f.tan_half_x) +
                                f.up * ((1.0f - 2.0f * v) * f.tan_half_y));
-            Hit& hit = hits[(size_t(y - y0) * w + x) * spp + k];
-            const SegmentHit met = vis.first_hit({camera.eye, dir * reach}, sc.camera);
-            hit = Hit{};
-            if (!met.hit) continue;
-            hit.x = camera.eye + dir * (reach * met.t);
-            if (!(glm::dot(met.normal, dir) < 0.0f)) {
-              hit.polygon = -2;
-              continue;
-            }
-            hit.polygon = locator.locate(hit.x, met.normal, sc.stack);
-            if (hit.polygon >= 0) {
-              const float d = reach * met.t * pixel_angle / float(n);
-              const float cosine =
-                  std::max(std::abs(glm::dot(tris.normal[size_t(hit.polygon)], dir)), 0.05f);
-              hit.footprint = d * d / cosine;
-            }
+            sc.segments[x * spp + k] = {camera.eye, dir * reach};
+          }
+        }
+        vis.first_hits(sc.segments, sc.met, sc.camera);
+        for (size_t i = 0; i < w * spp; ++i) {
+          const SegmentHit& met = sc.met[i];
+          const Vec3 dir = sc.segments[i].direction / reach;
+          Hit& hit = hits[size_t(y - y0) * w * spp + i];
+          hit = Hit{};
+          if (!met.hit) continue;
+          hit.x = camera.eye + sc.segments[i].direction * met.t;
+          if (!(glm::dot(met.normal, dir) < 0.0f)) {
+            hit.polygon = -2;
+            continue;
+          }
+          hit.polygon = locator.locate(hit.x, met.normal, sc.stack);
+          if (hit.polygon >= 0) {
+            const float d = reach * met.t * pixel_angle / float(n);
+            const float cosine =
+                std::max(std::abs(glm::dot(tris.normal[size_t(hit.polygon)], dir)), 0.05f);
+            hit.footprint = d * d / cosine;
           }
         }
       }

@@ -17,4 +17,10 @@ void VisibilityBackend::occluded_fan(const SegmentFan& fan, std::span<uint8_t> o
   }
 }
 
+void VisibilityBackend::first_hits(std::span<const Segment> segments, std::span<SegmentHit> out,
+                                   VisibilityStats& stats) const {
+  assert(out.size() == segments.size());
+  for (size_t i = 0; i < segments.size(); ++i) out[i] = first_hit(segments[i], stats);
+}
+
 }  // namespace rad

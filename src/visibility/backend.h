@@ -74,6 +74,12 @@ class VisibilityBackend {
   /// few segments that need to know what they meet (where a buried vertex gathers), not for shadow
   /// rays: it may visit every triangle along the way.
   virtual SegmentHit first_hit(const Segment& segment, VisibilityStats& stats) const = 0;
+  /// first_hit of each segment, out[i] for segments[i] (out.size() == segments.size()): the
+  /// camera rays of a final render, a batch per call. The backends override it with a loop
+  /// that calls their own first_hit directly; the default calls first_hit through the
+  /// interface.
+  virtual void first_hits(std::span<const Segment> segments, std::span<SegmentHit> out,
+                          VisibilityStats& stats) const;
 };
 
 /// Builds the chosen backend over the hierarchy's triangles (the grid backend also uses its

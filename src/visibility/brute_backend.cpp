@@ -37,6 +37,11 @@ class BruteBackend final : public VisibilityBackend {
     stats.triangle_tests += tests;
   }
 
+  void first_hits(std::span<const Segment> segments, std::span<SegmentHit> out,
+                  VisibilityStats& stats) const override {
+    for (size_t i = 0; i < segments.size(); ++i) out[i] = first_hit(segments[i], stats);
+  }
+
   SegmentHit first_hit(const Segment& s, VisibilityStats& stats) const override {
     SegmentHitRecord best;
     for (uint32_t i = 0; i < uint32_t(records_.size()); ++i) {

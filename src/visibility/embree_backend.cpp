@@ -239,6 +239,11 @@ class EmbreeBackend final : public VisibilityBackend {
     count(out, stats);
   }
 
+  void first_hits(std::span<const Segment> segments, std::span<SegmentHit> out,
+                  VisibilityStats& stats) const override {
+    for (size_t i = 0; i < segments.size(); ++i) out[i] = first_hit(segments[i], stats);
+  }
+
   SegmentHit first_hit(const Segment& s, VisibilityStats& stats) const override {
     const ScopedFlushDenormals denormals;
     NearestContext context;

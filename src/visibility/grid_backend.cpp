@@ -82,6 +82,11 @@ class GridBackend final : public VisibilityBackend {
 
   // Every object and every cell the segment crosses, without stopping at a hit: a triangle
   // spanning several cells may be met in a later cell at a smaller t than one met first.
+  void first_hits(std::span<const Segment> segments, std::span<SegmentHit> out,
+                  VisibilityStats& stats) const override {
+    for (size_t i = 0; i < segments.size(); ++i) out[i] = first_hit(segments[i], stats);
+  }
+
   SegmentHit first_hit(const Segment& s, VisibilityStats& stats) const override {
     const Vec3 o = s.origin, d = s.direction;
     SegmentHitRecord best;
