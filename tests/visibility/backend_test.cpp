@@ -186,6 +186,18 @@ TEST_P(BackendTest, FirstHitIsTheNearestSurfaceTheSharedTestMeets) {
   }
   EXPECT_GT(hits, 40u);
   EXPECT_LT(hits, s.size());
+  // The batch gives the same answers, one by one.
+  std::vector<SegmentHit> batch(s.size());
+  VisibilityStats stats;
+  b->first_hits(s, batch, stats);
+  EXPECT_EQ(stats.rays, s.size());
+  for (size_t i = 0; i < s.size(); ++i) {
+    VisibilityStats one;
+    const SegmentHit hit = b->first_hit(s[i], one);
+    EXPECT_EQ(batch[i].hit, hit.hit) << i;
+    EXPECT_EQ(batch[i].t, hit.t) << i;
+    EXPECT_EQ(batch[i].normal, hit.normal) << i;
+  }
 }
 
 // Two squares stacked, facing each other: the segment through both meets the nearer one,
