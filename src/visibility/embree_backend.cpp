@@ -83,13 +83,18 @@ void keep_shared_test_hits(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-// first_hit: every candidate Embree proposes is measured with the shared test on the original
-// segment and the nearest kept; all are rejected, so Embree goes on to the next.
+// first_hit, in two passes over the same candidates. First Embree's own nearest among the
+// triangles the shared test hits (`accept`: a candidate stands when the shared test, on the
+// original segment, hits it), which bounds where the shared test's nearest can lie. Then every
+// candidate up to that bound is measured with the shared test and the nearest kept; all are
+// rejected, so Embree goes on to the next. The second pass alone, over the whole segment, would
+// give the same answer, after visiting every triangle along it.
 struct NearestContext {
   RTCIntersectContext embree;  // first: Embree hands the filter a pointer to it
   Vec3 origin, direction;
   const TriangleRecord* records;
   const Cutouts* cutouts;
+  bool accept = false;
   SegmentHitRecord best;
   uint64_t tests = 0;
 };
@@ -101,10 +106,13 @@ void keep_nearest_shared_test_hit(const RTCFilterFunctionNArguments* args) {
     if (args->valid[i] != -1) continue;
     const uint32_t t = geometry->first_triangle + RTCHitN_primID(args->hit, args->N, i);
     ++context->tests;
-    keep_nearer(context->best,
-                segment_block_distance(context->records[t], *context->cutouts, context->origin,
-                                       context->direction),
-                t);
+    const float distance = segment_block_distance(context->records[t], *context->cutouts,
+                                                  context->origin, context->direction);
+    if (context->accept) {
+      if (!(distance < std::numeric_limits<float>::infinity())) args->valid[i] = 0;
+      continue;
+    }
+    keep_nearer(context->best, distance, t);
     args->valid[i] = 0;
   }
 }
@@ -265,7 +273,18 @@ class EmbreeBackend final : public VisibilityBackend {
     rh.ray.flags = 0;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    context.accept = true;
     rtcIntersect1(scene_, &context.embree, &rh);
+    if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+      // Embree's t is on a grown triangle along the lengthened ray: the shared test's nearest
+      // lies within a few margins of it.
+      const float slack = 8.0f * margin_ / std::max(glm::length(d), 1e-30f);
+      context.accept = false;
+      rh.ray.tfar = std::min(1.0f, rh.ray.tfar + slack);
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(scene_, &context.embree, &rh);
+    }
     stats.rays += 1;
     stats.triangle_tests += context.tests;
     const bool hit = context.best.triangle != ~0u;
