@@ -83,29 +83,39 @@ DirectLight make_direct_light(const SolverState& s, uint32_t variants) {
     d.sources.push_back(make_light_source(h.lights, int32_t(i), h.lights[i].colour, h.bounds));
   }
   if (!s.scene.culling.empty()) {
-    // Two passes over the sources' unhidden triangles: count, then place.
+    // Each source's unhidden triangles once, kept as runs of consecutive indices (a room's
+    // triangles are consecutive in the depth-first order), then counted and placed.
     const size_t n = h.triangles.size();
-    d.lit_first.assign(n + 1, 0);
+    std::vector<std::vector<std::pair<uint32_t, uint32_t>>> runs(d.sources.size());
     std::vector<uint32_t> seen;
-    auto unhidden = [&](const ShotSource& src) {
+    for (size_t i = 0; i < d.sources.size(); ++i) {
+      const ShotSource& src = d.sources[i];
       // The sun lies beyond the planes of all occluders, in no box: it is not culled.
       if (src.light >= 0 && src.emitter->kind == LightKind::Directional) {
-        seen.resize(n);
-        for (size_t p = 0; p < n; ++p) seen[p] = uint32_t(p);
-      } else {
-        unhidden_triangles(s.scene.culling, src, seen);
+        runs[i].push_back({0, uint32_t(n)});
+        continue;
       }
-    };
-    for (const ShotSource& src : d.sources) {
-      unhidden(src);
-      for (uint32_t p : seen) ++d.lit_first[p + 1];
+      unhidden_triangles(s.scene.culling, src, seen);
+      for (size_t j = 0; j < seen.size();) {
+        size_t k = j + 1;
+        while (k < seen.size() && seen[k] == seen[k - 1] + 1) ++k;
+        runs[i].push_back({seen[j], seen[k - 1] + 1});
+        j = k;
+      }
+    }
+    d.lit_first.assign(n + 1, 0);
+    for (const auto& r : runs) {
+      for (const auto& [first, last] : r) {
+        for (uint32_t p = first; p < last; ++p) ++d.lit_first[p + 1];
+      }
     }
     for (size_t p = 0; p < n; ++p) d.lit_first[p + 1] += d.lit_first[p];
     d.lit_by.resize(d.lit_first[n]);
     std::vector<uint32_t> next(d.lit_first.begin(), d.lit_first.end() - 1);
-    for (size_t i = 0; i < d.sources.size(); ++i) {
-      unhidden(d.sources[i]);
-      for (uint32_t p : seen) d.lit_by[next[p]++] = uint32_t(i);
+    for (size_t i = 0; i < runs.size(); ++i) {
+      for (const auto& [first, last] : runs[i]) {
+        for (uint32_t p = first; p < last; ++p) d.lit_by[next[p]++] = uint32_t(i);
+      }
     }
   }
   d.ends.resize(d.sources.size() * variants);
