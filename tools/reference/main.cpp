@@ -9,6 +9,14 @@
 //   build/rad scenes/cornell_box.des out/cornell.ply
 //   build/tools/rad-reference scenes/cornell_box.des --compare out/cornell.ply
 //       --reference scenes/reference/cornell_box.csv
+//
+// The reference seen through a camera (each pixel the mean radiosity over its area, and the
+// mask of interior pixels next to it as REF.mask.pgm), and a picture of rad's against it:
+//   build/tools/rad-reference scenes/cornell_box.des --camera 278,273,-800,278,273,0
+//       --size 200x200 --image-out out/cornell_ref.pfm
+//   build/rad scenes/cornell_box.des out/c.ply --camera 278,273,-800,278,273,0 --size 200x200
+//       --image out/c.pfm
+//   build/tools/rad-reference --compare-image out/c.pfm --reference-image out/cornell_ref.pfm
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -19,9 +27,12 @@
 #include <string>
 
 #include "core/error.h"
+#include "export/camera.h"
 #include "hierarchy/hierarchy.h"
 #include "reference/buried_points.h"
+#include "reference/camera_reference.h"
 #include "reference/compare.h"
+#include "reference/image_compare.h"
 #include "reference/path_tracer.h"
 #include "reference/ply_reader.h"
 #include "reference/reference_points.h"
@@ -108,6 +119,68 @@ int generate(const rad::Hierarchy& h, const std::string& scene_path, const std::
   return 0;
 }
 
+// REF.pfm -> REF.mask.pgm: where the mask of a reference image is unless given.
+std::string mask_path_for(const std::string& image_path) {
+  const size_t dot = image_path.rfind('.');
+  const size_t slash = image_path.find_last_of("/\\");
+  const bool has_ext = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+  return (has_ext ? image_path.substr(0, dot) : image_path) + ".mask.pgm";
+}
+
+void parse_size(const std::string& text, int& width, int& height) {
+  const size_t x = text.find('x');
+  char* end = nullptr;
+  const std::string w = text.substr(0, x), h = x == std::string::npos ? "" : text.substr(x + 1);
+  width = int(std::strtol(w.c_str(), &end, 10));
+  const bool w_ok = !w.empty() && !*end;
+  height = int(std::strtol(h.c_str(), &end, 10));
+  if (!w_ok || h.empty() || *end || width < 1 || height < 1 || width > 16384 || height > 16384) {
+    throw rad::Error("--size takes WxH, e.g. 200x200, not '" + text + "'");
+  }
+}
+
+int camera_reference(const rad::Hierarchy& h, const std::string& scene_path,
+                     const std::string& camera_text, const std::string& size_text,
+                     const std::string& out_path, std::string mask_path,
+                     rad::CameraReferenceOptions o, int threads) {
+  using namespace rad;
+  o.camera = parse_camera(camera_text);
+  parse_size(size_text, o.width, o.height);
+  if (mask_path.empty()) mask_path = mask_path_for(out_path);
+  std::fprintf(stderr, "%dx%d pixels, %d x %d paths each, %d threads\n", o.width, o.height,
+               o.pixel_samples, o.pixel_samples, threads);
+  int last = -1;
+  const CameraReference ref = render_camera_reference(h, o, [&](int done, int total) {
+    if (done * 20 / total != last * 20 / total || done == total) {
+      std::fprintf(stderr, "\r%d / %d rows", done, total);
+      std::fflush(stderr);
+    }
+    last = done;
+  });
+  std::fputc('\n', stderr);
+  FloatImage img{ref.width, ref.height, ref.radiosity};
+  write_pfm(out_path, img);
+  write_mask_pgm(mask_path, ref.interior, ref.width, ref.height);
+  size_t interior = 0;
+  for (uint8_t m : ref.interior) interior += m;
+  std::fprintf(stderr, "%s: %s, camera %s; %llu paths in %.0f s; %zu of %zu pixels interior (%s)\n",
+               out_path.c_str(), scene_path.c_str(), camera_spec(o.camera).c_str(),
+               static_cast<unsigned long long>(ref.paths), ref.seconds, interior,
+               ref.interior.size(), mask_path.c_str());
+  return 0;
+}
+
+int compare_image(const std::string& image_path, const std::string& reference_path,
+                  std::string mask_path) {
+  using namespace rad;
+  const FloatImage image = read_pfm(image_path);
+  const FloatImage reference = read_pfm(reference_path);
+  if (mask_path.empty()) mask_path = mask_path_for(reference_path);
+  const std::vector<uint8_t> mask = read_mask_pgm(mask_path, reference.width, reference.height);
+  std::fputs(format_image_comparison(compare_images(image, reference, mask)).c_str(), stdout);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -116,7 +189,7 @@ int main(int argc, char** argv) {
   rad::PointOptions po;
   rad::TraceOptions to;
   int threads = 0;
-  app.add_option("SCENE", scene_path, "scene description (.des)")->required();
+  app.add_option("SCENE", scene_path, "scene description (.des)");
   app.add_option("-o,--output", out_path, "reference CSV to write");
   app.add_option("--points", po.total, "points over the scene, by area")->capture_default_str();
   app.add_option("--min-per-triangle", po.min_per_triangle, "at least this many per triangle")
@@ -151,10 +224,43 @@ int main(int argc, char** argv) {
          "as rad's display does (rad --stats-json gives it as solver.ambient)")
       ->expected(3)
       ->needs("--compare");
+  std::string camera_text, size_text = "200x200", image_out, mask_path, compare_image_path,
+                           reference_image;
+  rad::CameraReferenceOptions co;
+  app.add_option("--camera", camera_text,
+                 "the reference through a camera: ex,ey,ez,tx,ty,tz[,fov_deg] (up +y, as rad's "
+                 "--camera), written with --image-out");
+  app.add_option("--size", size_text, "with --camera: image size WxH in pixels")
+      ->capture_default_str();
+  app.add_option("--pixel-samples", co.pixel_samples,
+                 "with --camera: paths per pixel along each side (k: k x k per pixel, one per "
+                 "stratum of its area)")
+      ->capture_default_str();
+  app.add_option("--image-out", image_out,
+                 "with --camera: the reference image to write (.pfm, linear radiosity)")
+      ->needs("--camera");
+  app.add_option("--mask", mask_path,
+                 "the interior mask (binary PGM) written with --image-out or read with "
+                 "--compare-image (default: the reference image's name, .mask.pgm)");
+  app.add_option("--reference-image", reference_image, "reference image (.pfm) of --camera");
+  app.add_option("--compare-image", compare_image_path,
+                 "rad's picture (.pfm) to compare with --reference-image: its mean relative "
+                 "error over the interior pixels and over all of them")
+      ->needs("--reference-image");
   CLI11_PARSE(app, argc, argv);
-  if (out_path.empty() == mesh_path.empty()) {
+  try {
+    if (!compare_image_path.empty())
+      return compare_image(compare_image_path, reference_image, mask_path);
+  } catch (const rad::Error& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 1;
+  }
+  const int modes = !out_path.empty() + !mesh_path.empty() + !image_out.empty();
+  if (modes != 1 || scene_path.empty()) {
     std::fprintf(stderr,
-                 "error: give either -o OUT.csv or --reference REF.csv --compare MESH.ply\n");
+                 "error: give SCENE and one of -o OUT.csv, --reference REF.csv --compare "
+                 "MESH.ply, --camera SPEC --image-out REF.pfm; or --compare-image IMAGE.pfm "
+                 "--reference-image REF.pfm\n");
     return 2;
   }
   to.seed = po.seed;
@@ -163,6 +269,11 @@ int main(int argc, char** argv) {
     if (threads <= 0) threads = tbb::info::default_concurrency();
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
     if (!mesh_path.empty()) return compare(h, reference_path, mesh_path, points_path, ambient);
+    if (!image_out.empty()) {
+      co.trace = to;
+      return camera_reference(h, scene_path, camera_text, size_text, image_out, mask_path, co,
+                              threads);
+    }
     return generate(h, scene_path, out_path, po, to, threads);
   } catch (const rad::Error& e) {
     std::fprintf(stderr, "%s\n", e.what());

@@ -110,6 +110,18 @@ DVec3 PathTracer::direct(const Vec3& p, const Vec3& n, Pcg32& rng) const {
   return to_d(material(tri).emission) * (weight * cos_x / (kPi * pdf));
 }
 
+RayHit PathTracer::first_hit(const Vec3& from, const Vec3& w, float tfar) const {
+  RayHit hit = scene_.intersect(from, w, tfar);
+  if (hit.triangle >= 0 && glm::dot(h_->triangles.normal[size_t(hit.triangle)], w) >= 0.0f) {
+    // A back face, unless a front face lies at the same distance: two rooms' walls back to
+    // back are coincident, and which of two coplanar triangles Embree reports is arbitrary
+    // (taking the back one made every building's reference up to 25% too dark).
+    const RayHit front = scene_.intersect_front(from, w, hit.t * (1.0f + 1e-5f) + offset_);
+    if (front.triangle >= 0) hit = front;
+  }
+  return hit;
+}
+
 DVec3 PathTracer::sample_irradiance(const Vec3& p0, const Vec3& n0, Pcg32& rng) const {
   const Triangles& t = h_->triangles;
   DVec3 irradiance(0.0), throughput(1.0);
@@ -118,15 +130,8 @@ DVec3 PathTracer::sample_irradiance(const Vec3& p0, const Vec3& n0, Pcg32& rng) 
     if (next_event_) irradiance += throughput * direct(p, n, rng);
     const Vec3 w = cosine_direction(n, rng);
     const Vec3 from = p + n * offset_;
-    RayHit hit = scene_.intersect(from, w, std::numeric_limits<float>::max());
+    const RayHit hit = first_hit(from, w, std::numeric_limits<float>::max());
     if (hit.triangle < 0) break;  // escaped
-    if (glm::dot(t.normal[size_t(hit.triangle)], w) >= 0.0f) {
-      // A back face, unless a front face lies at the same distance: two rooms' walls back to
-      // back are coincident, and which of two coplanar triangles Embree reports is arbitrary
-      // (taking the back one made every building's reference up to 25% too dark).
-      const RayHit front = scene_.intersect_front(from, w, hit.t * (1.0f + 1e-5f) + offset_);
-      if (front.triangle >= 0) hit = front;
-    }
     const Vec3& nh = t.normal[size_t(hit.triangle)];
     const float cos_y = -glm::dot(nh, w);
     if (cos_y <= 0.0f) break;  // back face: black

@@ -60,6 +60,10 @@ class PathTracer {
   /// One sample of the radiosity B = E + rho H at a point on triangle `triangle`.
   DVec3 sample_radiosity(const ReferencePoint& point, Pcg32& rng) const;
 
+  /// The nearest surface along from + s w, s in (0, tfar): a front face where one is
+  /// coincident with the nearest back face (see sample_irradiance), else whatever is nearest.
+  RayHit first_hit(const Vec3& from, const Vec3& w, float tfar) const;
+
   const Material& material(int32_t triangle) const;
   /// Distance by which ray origins leave their surface (a fraction of the scene's diagonal).
   float offset() const { return offset_; }

@@ -1,6 +1,7 @@
 // Deterministic random numbers for the reference renderer: PCG32 streams seeded by SplitMix64.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 namespace rad {
@@ -37,12 +38,28 @@ class Pcg32 {
     return (xorshifted >> rot) | (xorshifted << ((-rot) & 31u));
   }
 
-  /// Uniform in [0, 1), 32 random bits.
-  double uniform() { return double(next()) * 0x1p-32; }
+  /// Uniform in [0, 1), 32 random bits; or the next of the values given to draw_first.
+  double uniform() {
+    if (first_left_ > 0) {
+      --first_left_;
+      return *first_++;
+    }
+    return double(next()) * 0x1p-32;
+  }
+
+  /// The next `count` calls of uniform() return `values` (in [0, 1)) in order, then the stream
+  /// goes on: a caller's stratified numbers for a path's first dimensions (the camera
+  /// reference). `values` must outlive those calls.
+  void draw_first(const double* values, size_t count) {
+    first_ = values;
+    first_left_ = count;
+  }
 
  private:
   uint64_t state_ = 0;
   uint64_t inc_ = 1;
+  const double* first_ = nullptr;
+  size_t first_left_ = 0;
 };
 
 }  // namespace rad
