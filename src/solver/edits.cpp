@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "mesh/subdivide.h"
@@ -56,6 +57,51 @@ void set_material(SolverState& s, int32_t object, const Material& m, const Visib
     s.energy.unshot_energy[t] = polygon_unshot_energy(s.solution, t);
   }
   update_unshot_totals(s.energy, s.solution, s.scene.clusters, s.ownership.ranks);
+}
+
+void set_light(SolverState& s, int32_t light, const Vec3& colour, float intensity) {
+  const std::vector<Light>& lights = s.solution.hierarchy->lights;
+  if (light < 0 || size_t(light) >= lights.size()) {
+    throw Error(fmt::format("light {} does not exist (the scene has {})", light, lights.size()));
+  }
+  const Light& l = lights[size_t(light)];
+  if (!(intensity >= 0.0f) || !std::isfinite(intensity)) {
+    throw Error(fmt::format("light '{}': intensity must be finite and >= 0", l.name));
+  }
+  for (int k = 0; k < 3; ++k) {
+    if (!(colour[k] >= 0.0f) || !std::isfinite(colour[k])) {
+      throw Error(fmt::format("light '{}': colour must be finite and >= 0", l.name));
+    }
+  }
+  if (!(l.intensity > 0.0f)) {
+    throw Error(
+        fmt::format("light '{}' has intensity 0 in the scene: only a light the scene "
+                    "turns on can be changed",
+                    l.name));
+  }
+  std::vector<LightSetting>& settings = s.solution.lights;
+  // A state built without its lights' settings starts from the scene's.
+  if (settings.size() != lights.size()) {
+    settings.clear();
+    for (const Light& x : lights) settings.push_back({x.colour, x.intensity});
+  }
+  LightSetting& now = settings[size_t(light)];
+  // In units of the scene's light, which every shot of it scales (light_source.h); computed in
+  // double so that setting the scene's own values back leaves no rounding to shoot.
+  const double scale = 1.0 / double(l.intensity);
+  Vec3 d;
+  for (int k = 0; k < 3; ++k) {
+    d[k] = float(
+        (double(colour[k]) * double(intensity) - double(now.colour[k]) * double(now.intensity)) *
+        scale);
+  }
+  now = {colour, intensity};
+  if (d == Vec3(0.0f)) return;
+  s.energy.light_unshot[size_t(light)] += d;
+  s.energy.emitted_energy += s.energy.light_power[size_t(light)] * double(mean_component(d));
+  // Convergence follows the new emission, as for a material's (set_material).
+  if (s.energy.emitted_energy > 1e-6 * s.energy.reference_energy)
+    s.energy.reference_energy = s.energy.emitted_energy;
 }
 
 size_t force_subdivide(SolverState& s, int32_t polygon, const VisibilityBackend& vis) {

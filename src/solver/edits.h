@@ -17,6 +17,18 @@ namespace rad {
 /// Throws rad::Error if `object` is not a Pure or the material is out of range.
 void set_material(SolverState& s, int32_t object, const Material& m, const VisibilityBackend& vis);
 
+/// Gives light `light` of the scene (Hierarchy::lights) a new colour and intensity (candela, or
+/// lux for a directional light, in the hierarchy's units) and turns the change into light it
+/// has still to shoot, per channel and of either sign. A light gives colour x intensity x its
+/// distribution, linear in both, so the change is a shot of the scene's light whose colour is
+/// (colour' intensity' - colour intensity) / the scene's intensity; lights shoot first, so the
+/// next step shoots it, and every vertex it reaches gains (or loses) exactly the difference, the
+/// surfaces then passing it on. Logged shots keep what they shot, so vertices made later gather
+/// the light as it was plus its changes. Switching a light off is intensity 0.
+/// Throws rad::Error if `light` does not exist, the colour or intensity is negative or not
+/// finite, or the scene gave the light intensity 0 (there is no distribution to scale).
+void set_light(SolverState& s, int32_t light, const Vec3& colour, float intensity);
+
 /// Splits every leaf of polygon p one level (skipping leaves already at the minimum size).
 /// Each new vertex gathers every shot of the log again, so its radiosity is exact, not
 /// interpolated. Returns the number of new vertices. Parallel inside.

@@ -29,9 +29,15 @@ struct VertexState {
   }
 };
 
+/// A light's colour and intensity as edited (the fields of the same names in scene/light.h).
+struct LightSetting {
+  Vec3 colour{1.0f};
+  float intensity = 0.0f;
+};
+
 /// The scene's radiosity as solved so far: per polygon (a triangle of the hierarchy) its mesh
-/// and its vertices' states, and the materials as edited. Keeps a pointer to the hierarchy,
-/// which must outlive it.
+/// and its vertices' states, and the materials and lights as edited. Keeps a pointer to the
+/// hierarchy, which must outlive it.
 struct Solution {
   const Hierarchy* hierarchy = nullptr;
   Mesh mesh;
@@ -39,6 +45,8 @@ struct Solution {
   std::vector<std::vector<VertexState>> vertex_states;
   /// Materials per hierarchy object (copied so they can be edited between shots).
   std::vector<Material> materials;
+  /// Per light of the hierarchy (Hierarchy::lights): its colour and intensity, as edited.
+  std::vector<LightSetting> lights;
   /// Per polygon that reflects or emits by a texture, per vertex: its texture factors
   /// (solver/texture_factors.h), fixed when the vertex is made; empty for other polygons.
   std::vector<std::vector<TextureFactors>> texture_factors;

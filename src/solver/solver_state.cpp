@@ -78,6 +78,7 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   });
   sol.materials.reserve(h.objects.size());
   for (const SceneObject& o : h.objects) sol.materials.push_back(o.material);
+  for (const Light& l : h.lights) sol.lights.push_back({l.colour, l.intensity});
   energy.unshot_energy.assign(h.triangles.size(), UnshotEnergy{});
   double total_area = 0.0;
   sol.vertex_states.resize(h.triangles.size());

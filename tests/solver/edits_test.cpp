@@ -3,6 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <limits>
+#include <map>
+
 #include "scene_builder.h"
 #include "solver/gather.h"
 #include "solver/shoot.h"
@@ -210,6 +214,133 @@ TEST(Edits, ForcedSubdivisionGivesNewVerticesTheirExactRadiosity) {
   }
   EXPECT_FLOAT_EQ(vs[before].irradiance.x, expected.x);
   EXPECT_NE(vs[before].irradiance.x, interpolated) << "computed, not the mean of its ends";
+}
+
+// A room of 4 x 3 x 5 m with a table, lit by point lights (no emitting surface).
+Light room_light(const std::string& name, Vec3 at, float candela, Vec3 colour = Vec3(1.0f)) {
+  Light l;
+  l.name = name;
+  l.kind = LightKind::Point;
+  l.position = at;
+  l.direction = Vec3(0.0f, -1.0f, 0.0f);
+  l.intensity = candela;
+  l.colour = colour;
+  return l;
+}
+
+Hierarchy lit_room(const std::vector<Light>& lights) {
+  SceneDescription d;
+  testing::add_closed_box(d, Vec3(0.0f), Vec3(4.0f, 3.0f, 5.0f), Vec3(0.6f, 0.55f, 0.5f),
+                          Vec3(0.0f), 2);
+  testing::add_quad(d, "table", Vec3(1, 1, 1), Vec3(3, 1, 1), Vec3(3, 1, 3), Vec3(1, 1, 3),
+                    Vec3(0.3f, 0.5f, 0.7f), Vec3(0.0f), 2);
+  Hierarchy h = build_hierarchy(d);
+  h.lights = lights;
+  return h;
+}
+
+const Light kLampA = room_light("a", Vec3(1.3f, 2.6f, 3.1f), 80.0f);
+const Light kLampB = room_light("b", Vec3(3.0f, 2.2f, 1.5f), 50.0f, Vec3(1.0f, 0.8f, 0.6f));
+
+// Over every vertex both solutions have (the same position in the same polygon: a fresh solve
+// may subdivide elsewhere), the mean per-vertex difference over the mean radiosity.
+double mean_vertex_difference(const SolverState& a, const SolverState& b, size_t* compared) {
+  double diff = 0.0, sum = 0.0;
+  size_t n = 0;
+  for (size_t p = 0; p < a.solution.mesh.polygons.size(); ++p) {
+    const PolygonMesh& ma = a.solution.mesh.polygons[p];
+    const PolygonMesh& mb = b.solution.mesh.polygons[p];
+    std::map<std::array<float, 3>, uint32_t> at;
+    for (uint32_t v = 0; v < mb.vertex_count(); ++v)
+      at[{mb.positions[v].x, mb.positions[v].y, mb.positions[v].z}] = v;
+    for (uint32_t v = 0; v < ma.vertex_count(); ++v) {
+      const auto it = at.find({ma.positions[v].x, ma.positions[v].y, ma.positions[v].z});
+      if (it == at.end()) continue;
+      const Vec3 ba = a.solution.radiosity(p, v), bb = b.solution.radiosity(p, it->second);
+      for (int k = 0; k < 3; ++k) diff += std::abs(double(ba[k]) - double(bb[k]));
+      sum += double(bb.x) + double(bb.y) + double(bb.z);
+      ++n;
+    }
+  }
+  *compared = n;
+  return sum > 0.0 ? diff / sum : 1.0;
+}
+
+TEST(Edits, ALightsIntensityAndColourContinueToAFreshSolveOfTheEditedScene) {
+  const Hierarchy h = lit_room({kLampA, kLampB});
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  SolverState edited = make_solver_state(h, options());
+  EXPECT_EQ(solve(edited, *vis), StopReason::Converged);
+  const int64_t shots_before = edited.shots.count;
+  const Vec3 orange(1.0f, 0.5f, 0.2f);
+  set_light(edited, 0, orange, 2.0f * kLampA.intensity);
+  EXPECT_GT(edited.energy.unshot_fraction(), options().converge) << "the edit leaves work";
+  EXPECT_EQ(solve(edited, *vis), StopReason::Converged);
+  EXPECT_GT(edited.shots.count, shots_before) << "continued, not restarted";
+  EXPECT_EQ(edited.solution.lights[0].intensity, 2.0f * kLampA.intensity);
+
+  Light a2 = kLampA;
+  a2.colour = orange;
+  a2.intensity = 2.0f * kLampA.intensity;
+  const Hierarchy fresh_h = lit_room({a2, kLampB});
+  const auto fresh_vis = make_visibility_backend(BackendKind::Embree, fresh_h);
+  SolverState fresh = make_solver_state(fresh_h, options());
+  solve(fresh, *fresh_vis);
+  size_t compared = 0;
+  const double d = mean_vertex_difference(edited, fresh, &compared);
+  std::printf("light edit: mean vertex difference %.4f%% over %zu vertices\n", 100 * d, compared);
+  EXPECT_GT(compared, 100u);
+  EXPECT_LE(d, 0.01);
+}
+
+TEST(Edits, SwitchingALightOffLeavesOnlyTheOtherLightsLight) {
+  const Hierarchy h = lit_room({kLampA, kLampB});
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  SolverState edited = make_solver_state(h, options());
+  solve(edited, *vis);
+  set_light(edited, 0, kLampA.colour, 0.0f);
+  EXPECT_EQ(solve(edited, *vis), StopReason::Converged);
+
+  const Hierarchy only_b = lit_room({kLampB});
+  const auto fresh_vis = make_visibility_backend(BackendKind::Embree, only_b);
+  SolverState fresh = make_solver_state(only_b, options());
+  solve(fresh, *fresh_vis);
+  size_t compared = 0;
+  const double d = mean_vertex_difference(edited, fresh, &compared);
+  std::printf("light off: mean vertex difference %.4f%% over %zu vertices\n", 100 * d, compared);
+  EXPECT_GT(compared, 100u);
+  EXPECT_LE(d, 0.01);
+
+  // And on again: back to the scene's own solution.
+  set_light(edited, 0, kLampA.colour, kLampA.intensity);
+  EXPECT_EQ(solve(edited, *vis), StopReason::Converged);
+  SolverState both = make_solver_state(h, options());
+  solve(both, *vis);
+  EXPECT_LE(mean_vertex_difference(edited, both, &compared), 0.01);
+}
+
+TEST(Edits, ALightEditBeforeTheFirstShotIsTheEditedScenesOwnStart) {
+  // Before the light has shot, the edit changes what it will shoot: no second shot of it.
+  const Hierarchy h = lit_room({kLampA});
+  SolverState s = make_solver_state(h, options());
+  set_light(s, 0, Vec3(0.5f, 1.0f, 1.0f), 3.0f * kLampA.intensity);
+  EXPECT_EQ(s.energy.light_unshot[0], Vec3(1.5f, 3.0f, 3.0f));
+  EXPECT_NEAR(s.energy.emitted_energy, s.energy.light_power[0] * 2.5,
+              1e-6 * s.energy.emitted_energy);
+}
+
+TEST(Edits, RejectsAMissingLightABadValueOrALightTheSceneLeftOff) {
+  Light off = kLampB;
+  off.intensity = 0.0f;
+  const Hierarchy h = lit_room({kLampA, off});
+  SolverState s = make_solver_state(h, options());
+  EXPECT_THROW(set_light(s, 2, Vec3(1.0f), 1.0f), Error);
+  EXPECT_THROW(set_light(s, -1, Vec3(1.0f), 1.0f), Error);
+  EXPECT_THROW(set_light(s, 0, Vec3(1.0f), -1.0f), Error);
+  EXPECT_THROW(set_light(s, 0, Vec3(1.0f), std::numeric_limits<float>::infinity()), Error);
+  EXPECT_THROW(set_light(s, 0, Vec3(-1.0f, 1.0f, 1.0f), 1.0f), Error);
+  EXPECT_THROW(set_light(s, 1, Vec3(1.0f), 10.0f), Error);
+  EXPECT_EQ(s.energy.light_unshot[0], kLampA.colour) << "a refused edit changes nothing";
 }
 
 }  // namespace
