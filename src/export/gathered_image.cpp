@@ -24,6 +24,10 @@ namespace {
 // Sets of shadow-ray ends per source (direct_light.h): a subsample reads one, drawn from its
 // pixel and its place in it.
 constexpr uint32_t kEndSets = 16;
+// In a penumbra a subsample reads this many of the sets, evenly spaced from its own; a point
+// is in one where its direct light is below the unshadowed one by more than kPenumbra of it.
+constexpr uint32_t kPenumbraSets = 8;
+constexpr float kPenumbra = 1e-3f;
 // Rows traced, separated and shaded together: what is held at once is a band's hits.
 constexpr int kBandRows = 16;
 
@@ -208,8 +212,24 @@ Image render_gathered_image(const SolverState& s, const VisibilityBackend& vis,
             const Vec3 indirect = interpolate_at(
                                       m, [&](uint32_t v) { return bounced[p][v]; }, bary) +
                                   o.ambient;
-            const Vec3 d = direct_gain(s, direct, p, hit.x, tris.normal[p], set_of(pixel, k), vis,
-                                       receiver_settings(base, s, p), sc.direct);
+            const GatherSettings g = receiver_settings(base, s, p);
+            const uint32_t set = set_of(pixel, k);
+            Vec3 d = direct_gain(s, direct, p, hit.x, tris.normal[p], set, vis, g, sc.direct);
+            // In a penumbra (some light, less than unshadowed) the visibility is read through
+            // more sets of ray ends: the rays pay where they disagree, not everywhere.
+            if (g.shadows && max_component(d) > 0.0f) {
+              GatherSettings open = g;
+              open.shadows = false;
+              const Vec3 full =
+                  direct_gain(s, direct, p, hit.x, tris.normal[p], set, vis, open, sc.direct);
+              if (max_component(full - d) > kPenumbra * max_component(full)) {
+                for (uint32_t j = 1; j < kPenumbraSets; ++j) {
+                  d += direct_gain(s, direct, p, hit.x, tris.normal[p],
+                                   set + j * (kEndSets / kPenumbraSets), vis, g, sc.direct);
+                }
+                d /= float(kPenumbraSets);
+              }
+            }
             sum += DVec3(e + rho * (d + indirect));
           }
           image.pixels[pixel] = Vec3(sum / double(spp));
