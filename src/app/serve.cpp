@@ -38,6 +38,7 @@ int run_serve(const CommandLine& cmd) {
   so.ambient = outputs.ambient;
   so.curve = outputs.tonemap;
   so.exposure = outputs.exposure;
+  so.metres_per_unit = metres_per_unit(in);
   Session session(hierarchy, prepared.visibility(), so);
   Server server(session, std::move(assets), cmd.server);
   server.bind();

@@ -49,4 +49,45 @@ std::optional<std::string> controls_error(const MaterialControls& c) {
   return std::nullopt;
 }
 
+const char* intensity_unit(LightKind kind) { return kind == LightKind::Directional ? "lx" : "cd"; }
+
+LightControls to_light_controls(const Light& l, double square_metres_per_square_unit) {
+  LightControls c;
+  double intensity = double(l.intensity);
+  if (l.kind != LightKind::Directional) intensity *= square_metres_per_square_unit;
+  const float top = max_component(l.colour);
+  c.colour = l.colour;
+  if (top > 1.0f) {
+    c.colour = glm::min(l.colour / top, Vec3(1.0f));
+    intensity *= double(top);
+  }
+  c.intensity = float(intensity);
+  return c;
+}
+
+LightSetting to_light_setting(const LightControls& c, LightKind kind,
+                              double square_metres_per_square_unit) {
+  double intensity = double(c.intensity);
+  if (kind != LightKind::Directional) intensity /= square_metres_per_square_unit;
+  return {c.colour, float(intensity)};
+}
+
+LightControls apply_patch(LightControls c, const LightPatch& p) {
+  if (p.colour) c.colour = *p.colour;
+  if (p.intensity) c.intensity = *p.intensity;
+  return c;
+}
+
+std::optional<std::string> controls_error(const LightControls& c) {
+  for (int k = 0; k < 3; ++k) {
+    if (!(c.colour[k] >= 0.0f && c.colour[k] <= 1.0f)) {
+      return fmt::format("colour channel {} is {}; it must be in [0, 1]", k, c.colour[k]);
+    }
+  }
+  if (!(c.intensity >= 0.0f && c.intensity <= kMaxLightIntensity)) {
+    return fmt::format("intensity is {}; it must be in [0, {:g}]", c.intensity, kMaxLightIntensity);
+  }
+  return std::nullopt;
+}
+
 }  // namespace rad

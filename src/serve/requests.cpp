@@ -104,6 +104,41 @@ MaterialRequest parse_material_request(std::string_view body, const Hierarchy& h
   return r;
 }
 
+LightRequest parse_light_request(std::string_view body, const Hierarchy& h) {
+  const json j = parse_object(body, false);
+  only_fields(j, {"light", "colour", "color", "intensity"});
+  if (h.lights.empty()) throw BadRequest("the scene has no lights");
+  LightRequest r;
+  r.light = integer_field(j, "light", 0, int64_t(h.lights.size()) - 1);
+  const Light& l = h.lights[size_t(r.light)];
+  if (!(l.intensity > 0.0f)) {
+    throw BadRequest(fmt::format(
+        "light {} ('{}') has intensity 0 in the scene: only a light the scene turns on can be "
+        "changed",
+        r.light, l.name));
+  }
+  if (j.contains("colour") && j.contains("color")) {
+    throw BadRequest("give 'colour' or 'color', not both");
+  }
+  const char* colour_key = j.contains("color") ? "color" : "colour";
+  if (j.contains(colour_key)) {
+    const json& c = j[colour_key];
+    if (!c.is_array() || c.size() != 3) {
+      throw BadRequest(fmt::format("'{}' must be an array of 3 numbers", colour_key));
+    }
+    Vec3 v;
+    for (int k = 0; k < 3; ++k)
+      v[k] = number(c[size_t(k)], fmt::format("{}[{}]", colour_key, k), 0, 1);
+    r.patch.colour = v;
+  }
+  if (j.contains("intensity"))
+    r.patch.intensity = number(j["intensity"], "'intensity'", 0, kMaxLightIntensity);
+  if (!r.patch.colour && !r.patch.intensity) {
+    throw BadRequest("nothing to change: give 'colour' or 'intensity'");
+  }
+  return r;
+}
+
 int32_t parse_subdivide_request(std::string_view body, const Hierarchy& h) {
   const json j = parse_object(body, false);
   only_fields(j, {"polygon"});

@@ -31,6 +31,17 @@ struct MaterialRequest {
 };
 MaterialRequest parse_material_request(std::string_view body, const Hierarchy& h);
 
+/// {"light": <index into /api/scene's lights>, "colour": [r, g, b], "intensity": i}: at least one
+/// of the two ("color" is accepted), the colour's channels in [0, 1], the intensity in candela
+/// (point, spot) or lux (directional) in [0, kMaxLightIntensity]; 0 switches the light off.
+/// Throws BadRequest for malformed JSON, unknown or missing fields, wrong types, an unknown
+/// light, a light the scene gave intensity 0, or a value out of range.
+struct LightRequest {
+  int32_t light = -1;
+  LightPatch patch;
+};
+LightRequest parse_light_request(std::string_view body, const Hierarchy& h);
+
 /// {"polygon": <index>} -> the polygon. Throws BadRequest as above.
 int32_t parse_subdivide_request(std::string_view body, const Hierarchy& h);
 

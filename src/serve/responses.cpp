@@ -47,8 +47,21 @@ std::string scene_json(const Hierarchy& h, const Camera& camera, double converge
                        {"triangle_count", o.triangle_count}});
     brightest = std::max(brightest, max_component(o.material.emission));
   }
+  json lights = json::array();
+  for (size_t i = 0; i < h.lights.size(); ++i) {
+    const Light& l = h.lights[i];
+    json j{{"id", i},
+           {"name", l.name},
+           {"kind", to_string(l.kind)},
+           {"unit", intensity_unit(l.kind)},
+           {"editable", l.intensity > 0.0f}};
+    if (l.kind != LightKind::Directional) j["position"] = vec(l.position);
+    if (l.kind != LightKind::Point) j["direction"] = vec(l.direction);
+    lights.push_back(std::move(j));
+  }
   return json{{"name", h.scene_name},
               {"objects", objects},
+              {"lights", lights},
               {"roots", h.roots},
               {"bounds", {{"min", vec(h.bounds.lo)}, {"max", vec(h.bounds.hi)}}},
               {"camera",
@@ -73,6 +86,9 @@ std::string status_json(const Hierarchy& h, const Snapshot& s) {
     }
     objects.push_back(std::move(j));
   }
+  json lights = json::array();
+  for (const LightControls& l : s.lights)
+    lights.push_back({{"colour", vec(l.colour)}, {"intensity", l.intensity}});
   json history = json::array();
   for (const auto& [shot, fraction] : s.history) history.push_back(json::array({shot, fraction}));
   return json{
@@ -90,6 +106,7 @@ std::string status_json(const Hierarchy& h, const Snapshot& s) {
       {"exposure",
        {{"scale", s.tone.scale}, {"stops", s.exposure_stops}, {"locked", s.exposure_locked}}},
       {"objects", objects},
+      {"lights", lights},
       {"history", history},
       {"notice", s.notice}}
       .dump();

@@ -16,12 +16,13 @@ inline constexpr uint32_t kMeshMagic = 0x4d444152;    // "RADM"
 inline constexpr uint32_t kColourMagic = 0x43444152;  // "RADC"
 
 /// The static description of the scene: name, objects (id, name, kind, parent, children,
-/// triangle range), bounds, the default camera, the largest
-/// emission in the scene, the solver's convergence goal.
+/// triangle range), the lights (id, name, kind, intensity unit, whether the page may change it,
+/// position and direction), bounds, the default camera, the largest emission in the scene, the
+/// solver's convergence goal.
 std::string scene_json(const Hierarchy& h, const Camera& camera, double converge);
 
 /// The snapshot without its arrays: versions, status, progress, exposure, per-object elements
-/// and controls, convergence history, notice.
+/// and controls, per-light colour and intensity, convergence history, notice.
 std::string status_json(const Hierarchy& h, const Snapshot& s);
 
 /// Header, positions (3 float per vertex), colours (3 float per vertex), indices (uint32),

@@ -175,6 +175,10 @@ struct Server::Impl {
       const MaterialRequest r = parse_material_request(body, session.hierarchy());
       return session.edit_material(r.object, r.patch);
     });
+    post("/api/light", [this](const std::string& body) {
+      const LightRequest r = parse_light_request(body, session.hierarchy());
+      return session.edit_light(r.light, r.patch);
+    });
     post("/api/subdivide", [this](const std::string& body) {
       return session.subdivide(parse_subdivide_request(body, session.hierarchy()));
     });

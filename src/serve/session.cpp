@@ -29,6 +29,10 @@ Session::Session(const Hierarchy& h, const VisibilityBackend& vis, const Session
   for (const SceneObject& obj : h.objects) original_controls_.push_back(to_controls(obj.material));
   controls_ = original_controls_;
   requested_controls_ = original_controls_;
+  const double square = o.metres_per_unit * o.metres_per_unit;
+  for (const Light& l : h.lights) original_light_controls_.push_back(to_light_controls(l, square));
+  light_controls_ = original_light_controls_;
+  requested_light_controls_ = original_light_controls_;
   exposure_stops_ = o.exposure;
   last_publish_ = rate_mark_time_ = Clock::now();
   publish();
@@ -86,6 +90,32 @@ bool Session::edit_material(int32_t object, const MaterialPatch& patch) {
   return true;
 }
 
+bool Session::edit_light(int32_t light, const LightPatch& patch) {
+  if (light < 0 || size_t(light) >= h_.lights.size()) {
+    throw Error(fmt::format("light {} does not exist (the scene has {})", light, h_.lights.size()));
+  }
+  if (!(h_.lights[size_t(light)].intensity > 0.0f)) {
+    throw Error(
+        fmt::format("light '{}' has intensity 0 in the scene: only a light the scene "
+                    "turns on can be changed",
+                    h_.lights[size_t(light)].name));
+  }
+  std::lock_guard lock(mutex_);
+  const LightControls c = apply_patch(requested_light_controls_[size_t(light)], patch);
+  if (auto why = controls_error(c)) throw Error(*why);
+  for (Edit& e : queue_) {
+    if (auto* l = std::get_if<LightEdit>(&e); l && l->light == light) {
+      l->controls = c;
+      requested_light_controls_[size_t(light)] = c;
+      wake_.notify_one();
+      return true;
+    }
+  }
+  if (!enqueue(LightEdit{light, c})) return false;
+  requested_light_controls_[size_t(light)] = c;
+  return true;
+}
+
 bool Session::subdivide(int32_t polygon) {
   if (polygon < 0 || size_t(polygon) >= h_.triangles.size()) {
     throw Error(
@@ -108,7 +138,10 @@ bool Session::resume() {
 bool Session::restart(bool original_materials) {
   std::lock_guard lock(mutex_);
   if (!enqueue(RestartEdit{original_materials})) return false;
-  if (original_materials) requested_controls_ = original_controls_;
+  if (original_materials) {
+    requested_controls_ = original_controls_;
+    requested_light_controls_ = original_light_controls_;
+  }
   return true;
 }
 
@@ -171,6 +204,17 @@ void Session::run() {
   publish();  // Stopped
 }
 
+void Session::apply_light(int32_t light) {
+  const Light& l = h_.lights[size_t(light)];
+  const LightControls& c = light_controls_[size_t(light)];
+  // The scene's own values exactly when the controls are back at them: nothing left to shoot.
+  const LightSetting to =
+      c == original_light_controls_[size_t(light)]
+          ? LightSetting{l.colour, l.intensity}
+          : to_light_setting(c, l.kind, options_.metres_per_unit * options_.metres_per_unit);
+  rad::set_light(state_, light, to.colour, to.intensity);
+}
+
 void Session::apply(const Edit& edit) {
   try {
     if (const auto* m = std::get_if<MaterialEdit>(&edit)) {
@@ -184,6 +228,24 @@ void Session::apply(const Edit& edit) {
           "emission {:.4g}",
           h_.objects[size_t(m->object)].name, m->controls.colour.x, m->controls.colour.y,
           m->controls.colour.z, m->controls.reflectivity, m->controls.emission);
+    } else if (const auto* l = std::get_if<LightEdit>(&edit)) {
+      exposure_locked_ = true;  // as for a material: the change shows as brighter or darker
+      const LightControls before = light_controls_[size_t(l->light)];
+      light_controls_[size_t(l->light)] = l->controls;
+      try {
+        apply_light(l->light);
+      } catch (...) {
+        light_controls_[size_t(l->light)] = before;
+        throw;
+      }
+      nothing_to_shoot_ = false;
+      const Light& light = h_.lights[size_t(l->light)];
+      notice_ =
+          l->controls.intensity > 0.0f
+              ? fmt::format("light '{}': colour ({:.3g}, {:.3g}, {:.3g}), intensity {:.4g} {}",
+                            light.name, l->controls.colour.x, l->controls.colour.y,
+                            l->controls.colour.z, l->controls.intensity, intensity_unit(light.kind))
+              : fmt::format("light '{}' off", light.name);
     } else if (const auto* s = std::get_if<SubdivideEdit>(&edit)) {
       const size_t n = force_subdivide(state_, s->polygon, vis_);
       nothing_to_shoot_ = false;
@@ -198,7 +260,10 @@ void Session::apply(const Edit& edit) {
     } else if (const auto* r = std::get_if<RestartEdit>(&edit)) {
       state_ = make_solver_state(h_, options_.solver);
       builder_.reset();
-      if (r->original_materials) controls_ = original_controls_;
+      if (r->original_materials) {
+        controls_ = original_controls_;
+        light_controls_ = original_light_controls_;
+      }
       // A fresh state holds the scene's materials: re-apply the edited ones before any shot
       // (emission changes become the initial unshot radiosity, exactly).
       for (size_t o = 0; o < h_.objects.size(); ++o) {
@@ -206,13 +271,17 @@ void Session::apply(const Edit& edit) {
           rad::set_material(state_, int32_t(o), to_material(controls_[o]), vis_);
         }
       }
+      // The same for the lights: an edit before their first shot changes what they shoot.
+      for (size_t i = 0; i < h_.lights.size(); ++i) {
+        if (!(light_controls_[i] == original_light_controls_[i])) apply_light(int32_t(i));
+      }
       nothing_to_shoot_ = false;
       exposure_locked_ = false;
       solve_seconds_ = 0.0;
       rate_mark_rays_ = 0;
       rate_mark_time_ = Clock::now();
-      notice_ = r->original_materials ? "restarted with the scene's materials"
-                                      : "restarted with the current materials";
+      notice_ = r->original_materials ? "restarted with the scene's materials and lights"
+                                      : "restarted with the current materials and lights";
     } else if (const auto* x = std::get_if<ExposureEdit>(&edit)) {
       if (x->stops) exposure_stops_ = *x->stops;
       if (x->refit) exposure_locked_ = false;  // refitted by the next publish, then locked
@@ -284,6 +353,7 @@ void Session::publish() {
     snap->objects[o].elements = elements[o];
     snap->objects[o].controls = controls_[o];
   }
+  snap->lights = light_controls_;
   snap->elements = 0;
   for (int32_t r : h_.roots) snap->elements += elements[size_t(r)];
   snap->history = thin_history(state_.shots.history, kHistoryPoints);

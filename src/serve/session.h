@@ -29,6 +29,9 @@ struct SessionOptions {
   /// snapshot takes to build, so a large mesh costs the solver at most a fifth of its time.
   double publish_interval = 0.1;
   size_t max_pending_edits = 256;  // edits queued beyond this are refused
+  /// The scene's unit of length in metres (--unit): the hierarchy holds a point or spot light's
+  /// intensity in candela per square unit, the page in candela.
+  double metres_per_unit = 1.0;
 };
 
 /// Runs a progressive solve on its own thread and lets other threads edit it.
@@ -41,8 +44,9 @@ struct SessionOptions {
 /// When the solve converges (or is paused) the thread sleeps until an edit arrives.
 ///
 /// Edits continue the same solve (Chen, "Incremental Radiosity", SIGGRAPH 1990; see
-/// solver/edits.h): a material edit becomes positive or negative unshot radiosity, a forced
-/// subdivision gathers every logged shot again at the new vertices.
+/// solver/edits.h): a material edit becomes positive or negative unshot radiosity, a light's
+/// edit positive or negative light it has still to shoot, a forced subdivision gathers every
+/// logged shot again at the new vertices.
 class Session {
  public:
   /// Prepares the solve and publishes the first snapshot (before any shot); start() runs it.
@@ -65,13 +69,18 @@ class Session {
   /// queued again (a slider's intermediate values cost nothing). Throws rad::Error when `object`
   /// is not a Pure or the resulting controls are out of range (see controls_error).
   bool edit_material(int32_t object, const MaterialPatch& patch);
+  /// Changes light `light` (Hierarchy::lights) of the scene: `patch` over the controls last
+  /// requested for it, intensity in candela or lux (LightControls). A pending edit of the same
+  /// light is replaced, not queued again. Throws rad::Error when the light does not exist, the
+  /// scene gave it intensity 0, or the resulting controls are out of range.
+  bool edit_light(int32_t light, const LightPatch& patch);
   /// Splits every leaf of `polygon` one level (down to the minimum size), new vertices exact.
   /// Throws rad::Error for a polygon index out of range.
   bool subdivide(int32_t polygon);
   bool pause();
   bool resume();
-  /// Starts the solve over from the unlit mesh: with the current materials, or with the scene's
-  /// own when `original_materials`. The exposure follows the solve again.
+  /// Starts the solve over from the unlit mesh: with the current materials and lights, or with
+  /// the scene's own when `original_materials`. The exposure follows the solve again.
   bool restart(bool original_materials);
   /// Sets the user's exposure offset (stops, in [-20, 20]) and/or refits the automatic exposure
   /// to the current solution. Throws rad::Error for stops out of range.
@@ -96,6 +105,10 @@ class Session {
     int32_t object;
     MaterialControls controls;
   };
+  struct LightEdit {
+    int32_t light;
+    LightControls controls;
+  };
   struct SubdivideEdit {
     int32_t polygon;
   };
@@ -109,22 +122,26 @@ class Session {
     std::optional<float> stops;
     bool refit;
   };
-  using Edit = std::variant<MaterialEdit, SubdivideEdit, PauseEdit, RestartEdit, ExposureEdit>;
+  using Edit =
+      std::variant<MaterialEdit, LightEdit, SubdivideEdit, PauseEdit, RestartEdit, ExposureEdit>;
 
   bool enqueue(Edit e);  // with mutex_ held by the caller
   void run();            // the solver thread
   void apply(const Edit& e);
   bool finished() const;
+  void apply_light(int32_t light);  // light_controls_[light] into the solver state
   void publish();
 
   const Hierarchy& h_;
   const VisibilityBackend& vis_;
   const SessionOptions options_;
-  std::vector<MaterialControls> original_controls_;  // per object, from the scene
+  std::vector<MaterialControls> original_controls_;     // per object, from the scene
+  std::vector<LightControls> original_light_controls_;  // per light, from the scene
 
   // Solver thread only (and state() while it is not running).
   SolverState state_;
-  std::vector<MaterialControls> controls_;  // per object, as applied
+  std::vector<MaterialControls> controls_;     // per object, as applied
+  std::vector<LightControls> light_controls_;  // per light, as applied
   bool paused_ = false;
   bool nothing_to_shoot_ = false;
   bool exposure_locked_ = false;
@@ -145,6 +162,7 @@ class Session {
   std::condition_variable wake_;
   std::vector<Edit> queue_;
   std::vector<MaterialControls> requested_controls_;
+  std::vector<LightControls> requested_light_controls_;
   bool stopping_ = false;
   bool started_ = false;
 

@@ -155,6 +155,54 @@ TEST_F(Requests, ExportChecksFormatAndParameters) {
             "camera: the eye and the target are the same point");
 }
 
+TEST(LightRequests, TakeColourOrIntensityOfALightTheSceneTurnsOn) {
+  Hierarchy h = build_hierarchy(testing::serve_scene());
+  Light on, off;
+  on.intensity = 10.0f;
+  off.name = "spare";
+  h.lights = {on, off};
+  const LightRequest r = parse_light_request(R"({"light": 0, "intensity": 25.5})", h);
+  EXPECT_EQ(r.light, 0);
+  EXPECT_EQ(r.patch.intensity, 25.5f);
+  EXPECT_FALSE(r.patch.colour);
+  const LightRequest c = parse_light_request(R"({"light": 0, "color": [1, 0.5, 0]})", h);
+  EXPECT_EQ(c.patch.colour, Vec3(1.0f, 0.5f, 0.0f));
+  auto error = [&](const std::string& body) -> std::string {
+    try {
+      parse_light_request(body, h);
+    } catch (const BadRequest& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_NE(error(R"({"light": 1, "intensity": 1})").find("('spare') has intensity 0"),
+            std::string::npos);
+  EXPECT_NE(error(R"({"light": 2, "intensity": 1})").find("'light' is 2"), std::string::npos);
+  EXPECT_NE(error(R"({"light": 0})").find("nothing to change"), std::string::npos);
+  EXPECT_NE(error(R"({"light": 0, "intensity": -1})").find("'intensity'"), std::string::npos);
+  EXPECT_NE(error(R"({"light": 0, "intensity": 1e10})").find("'intensity'"), std::string::npos);
+  EXPECT_NE(error(R"({"light": 0, "colour": [1, 2, 0]})").find("colour[1]"), std::string::npos);
+  EXPECT_NE(error(R"({"light": 0, "watts": 3})").find("unknown field 'watts'"), std::string::npos);
+  h.lights.clear();
+  EXPECT_NE(error(R"({"light": 0, "intensity": 1})").find("no lights"), std::string::npos);
+}
+
+TEST(LightControls, ShowCandelaWhateverTheSceneUnitAndKeepColourTimesIntensity) {
+  Light l;
+  l.kind = LightKind::Point;
+  l.colour = Vec3(2.0f, 1.0f, 0.5f);
+  l.intensity = 3.0f;                                 // candela per square unit
+  const LightControls c = to_light_controls(l, 4.0);  // 2 m per unit
+  EXPECT_EQ(c.colour, Vec3(1.0f, 0.5f, 0.25f));
+  EXPECT_FLOAT_EQ(c.intensity, 24.0f);
+  const LightSetting back = to_light_setting(c, l.kind, 4.0);
+  EXPECT_FLOAT_EQ(back.intensity * back.colour.x, 6.0f);
+  l.kind = LightKind::Directional;  // lux: no unit of length in it
+  EXPECT_FLOAT_EQ(to_light_controls(l, 4.0).intensity, 6.0f);
+  EXPECT_STREQ(intensity_unit(LightKind::Spot), "cd");
+  EXPECT_STREQ(intensity_unit(LightKind::Directional), "lx");
+}
+
 TEST(MaterialControls, SplitAndJoinMaterialsAsTheDescriptionWritesThem) {
   // The Cornell box light: Reflectivity 0.78 Color <1 0.70588 0.23529> Emission 53.407.
   const Vec3 c(1.0f, 0.70588f, 0.23529f);

@@ -215,6 +215,119 @@ TEST_F(ServerTest, StopsPromptlyWithAnOpenEventStream) {
   listener.join();
 }
 
+// The box lit by a point light alone (the lamp quad emits nothing) and a directional light the
+// scene left off, in a scene whose unit is 2 m: the page sees candela, the hierarchy holds
+// candela per square unit.
+TEST(LightEdits, TheSceneListsItsLightsAndTheirEditsContinueTheSolve) {
+  Hierarchy h = build_hierarchy(testing::serve_scene(Vec3(0.0f)));
+  Light bulb;
+  bulb.name = "bulb";
+  bulb.kind = LightKind::Point;
+  bulb.position = Vec3(0.5f, 0.5f, 0.8f);
+  bulb.direction = Vec3(0.0f, 0.0f, -1.0f);
+  bulb.intensity = 1.0f;  // 4 cd at 2 m per unit
+  Light sun;
+  sun.name = "sun";
+  sun.kind = LightKind::Directional;
+  sun.direction = Vec3(0.0f, 0.0f, -1.0f);
+  sun.intensity = 0.0f;
+  h.lights = {bulb, sun};
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  SessionOptions o;
+  o.solver = testing::serve_options();
+  o.solver.converge = 1e-3;
+  o.metres_per_unit = 2.0;
+  Session session(h, *vis, o);
+  Server server(session, load_web_assets(fake_modules()), ServerOptions{"127.0.0.1", 0, 4});
+  httplib::Client client("127.0.0.1", server.bind());
+  client.set_read_timeout(10, 0);
+  session.start();
+  server.start();
+  auto post = [&](const json& body) {
+    return client.Post("/api/light", body.dump(), "application/json");
+  };
+  auto status = [&] { return json::parse(client.Get("/api/status")->body); };
+  // The status once converged after more than `shots` shots.
+  auto converged_after = [&](int64_t shots) {
+    const auto deadline = std::chrono::steady_clock::now() + 60s;
+    json st = status();
+    while (std::chrono::steady_clock::now() < deadline &&
+           !(st["status"] == "converged" && st["shots"].get<int64_t>() > shots)) {
+      std::this_thread::sleep_for(20ms);
+      st = status();
+    }
+    return st;
+  };
+  // The snapshot's radiosity integrated over its faces, per channel: linear in the light
+  // whatever the mesh (a mean over vertices would follow where the solve subdivided).
+  auto total_radiosity = [&] {
+    const auto snap = session.snapshot();
+    const MeshGeometry& g = *snap->mesh.geometry;
+    DVec3 sum(0.0);
+    for (size_t f = 0; f + 2 < g.indices.size(); f += 3) {
+      const uint32_t a = g.indices[f], b = g.indices[f + 1], c = g.indices[f + 2];
+      const double area = 0.5 * glm::length(glm::cross(g.position[b] - g.position[a],
+                                                       g.position[c] - g.position[a]));
+      sum += DVec3(snap->mesh.radiosity[a] + snap->mesh.radiosity[b] + snap->mesh.radiosity[c]) *
+             (area / 3.0);
+    }
+    return sum;
+  };
+
+  const json scene = json::parse(client.Get("/api/scene")->body);
+  ASSERT_EQ(scene["lights"].size(), 2u);
+  EXPECT_EQ(scene["lights"][0]["name"], "bulb");
+  EXPECT_EQ(scene["lights"][0]["kind"], "point");
+  EXPECT_EQ(scene["lights"][0]["unit"], "cd");
+  EXPECT_EQ(scene["lights"][0]["editable"], true);
+  EXPECT_EQ(scene["lights"][1]["unit"], "lx");
+  EXPECT_EQ(scene["lights"][1]["editable"], false);
+
+  json st = converged_after(0);
+  ASSERT_EQ(st["status"], "converged");
+  EXPECT_NEAR(st["lights"][0]["intensity"].get<double>(), 4.0, 1e-5);
+  EXPECT_EQ(st["lights"][0]["colour"], json::array({1.0, 1.0, 1.0}));
+  const DVec3 white = total_radiosity();
+  ASSERT_GT(white.x, 0.0);
+
+  // Twice the intensity, an orange colour: red twice, blue half, continuing the same solve.
+  int64_t shots = st["shots"].get<int64_t>();
+  auto r = post({{"light", 0}, {"intensity", 8}, {"colour", {1.0, 0.5, 0.25}}});
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 202);
+  st = converged_after(shots);
+  ASSERT_EQ(st["status"], "converged");
+  EXPECT_EQ(st["lights"][0]["intensity"].get<double>(), 8.0);
+  EXPECT_EQ(st["lights"][0]["colour"], json::array({1.0, 0.5, 0.25}));
+  EXPECT_NE(st["notice"].get<std::string>().find("light 'bulb'"), std::string::npos);
+  const DVec3 orange = total_radiosity();
+  EXPECT_NEAR(orange.x / white.x, 2.0, 0.02);
+  EXPECT_NEAR(orange.z / white.z, 0.5, 0.005);
+
+  // Off: nothing else lights the box.
+  shots = st["shots"].get<int64_t>();
+  r = post({{"light", 0}, {"intensity", 0}});
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 202);
+  st = converged_after(shots);
+  ASSERT_EQ(st["status"], "converged");
+  EXPECT_EQ(st["lights"][0]["colour"], json::array({1.0, 0.5, 0.25})) << "kept for switching on";
+  EXPECT_LT(std::abs(total_radiosity().x), 0.01 * white.x);
+
+  // Bad edits: 400 with a message, nothing queued.
+  for (const json& bad :
+       {json{{"light", 1}, {"intensity", 3}}, json{{"light", 2}, {"intensity", 1}},
+        json{{"light", 0}, {"intensity", -1}}, json{{"light", 0}},
+        json{{"light", 0}, {"colour", {2, 0, 0}}}, json{{"light", 0}, {"power", 3}}}) {
+    r = post(bad);
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 400) << bad.dump();
+    EXPECT_TRUE(json::parse(r->body).contains("error")) << bad.dump();
+  }
+  server.stop();
+  session.stop();
+}
+
 TEST(WebAssets, SaysWhatIsMissingAndHowToInstallIt) {
   try {
     load_web_assets("/nonexistent/node_modules");

@@ -18,6 +18,7 @@ let meshVersion = 0, colourVersion = 0;
 const latest = { version: 0, mesh_version: 0 };
 let selected = -1;          // selected object id
 let lastEditTime = 0;       // ms; panel values are not overwritten right after the user's edits
+let lightEditTime = 0;      // the same for the lights
 const settings = { onClick: 'select', wireframe: false, exposure: 0 };
 
 // ---------------------------------------------------------------- 3D view
@@ -207,6 +208,21 @@ function editMaterial(object, patch) {
   }
 }
 
+// Light edits the same way, per light.
+const pendingLights = new Map(), lightTimers = new Map();
+function editLight(light, patch) {
+  lightEditTime = performance.now();
+  pendingLights.set(light, { ...(pendingLights.get(light) || {}), ...patch });
+  if (!lightTimers.has(light)) {
+    lightTimers.set(light, setTimeout(() => {
+      lightTimers.delete(light);
+      const e = pendingLights.get(light);
+      pendingLights.delete(light);
+      if (e) post('/api/light', { light, ...e });
+    }, 100));
+  }
+}
+
 // ---------------------------------------------------------------- panel
 
 function notice(text) { $('notice').textContent = text; }
@@ -256,6 +272,54 @@ function refreshControls(force) {
   material.emission = s.emission;
   emissionCtl.max(Math.max(4 * scene.max_emission, 2 * s.emission, 1));
   for (const c of [colourCtl, reflectivityCtl, emissionCtl]) c.updateDisplay();
+}
+
+// The scene's lights: colour, intensity in its unit (cd or lx) and a switch. Off is intensity 0;
+// on again restores the intensity it had.
+const lightControls = [];
+function buildLights() {
+  if (!scene.lights || scene.lights.length === 0) return;
+  $('lights-section').hidden = false;
+  const lightsGui = new GUI({ container: $('lights'), title: 'Lights', width: 300 });
+  for (const l of scene.lights) {
+    const folder = lightsGui.addFolder(`${l.name || `light ${l.id}`} (${l.kind})`);
+    const state = { colour: [1, 1, 1], intensity: 0, on: true, lit: 0 };
+    const colour = folder.addColor(state, 'colour').name('colour')
+      .onChange((v) => editLight(l.id, { colour: [...v] }));
+    const intensity = folder.add(state, 'intensity').min(0).name(`intensity (${l.unit})`)
+      .onChange((v) => {
+        if (v > 0) state.lit = v;
+        state.on = v > 0;
+        on.updateDisplay();
+        editLight(l.id, { intensity: v });
+      });
+    const on = folder.add(state, 'on').name('on').onChange((v) => {
+      state.intensity = v ? state.lit : 0;
+      intensity.updateDisplay();
+      editLight(l.id, { intensity: state.intensity });
+    });
+    colour.domElement.dataset.control = `light-${l.id}-colour`;
+    intensity.domElement.dataset.control = `light-${l.id}-intensity`;
+    on.domElement.dataset.control = `light-${l.id}-on`;
+    if (!l.editable) {
+      for (const c of [colour, intensity, on]) c.disable();
+      folder.domElement.title = 'intensity 0 in the scene: nothing to scale';
+    }
+    lightControls.push({ state, colour, intensity, on });
+  }
+}
+
+function refreshLights() {
+  if (!status || !status.lights || performance.now() - lightEditTime < 1500) return;
+  status.lights.forEach((s, i) => {
+    const c = lightControls[i];
+    if (!c) return;
+    c.state.colour = [...s.colour];
+    c.state.intensity = s.intensity;
+    c.state.on = s.intensity > 0;
+    if (s.intensity > 0 || c.state.lit === 0) c.state.lit = s.intensity;
+    for (const k of [c.colour, c.intensity, c.on]) k.updateDisplay();
+  });
 }
 
 function select(id) {
@@ -336,6 +400,7 @@ function onStatus(s) {
     el.querySelector('.count').textContent = s.objects[Number(el.dataset.id)].elements.toLocaleString();
   });
   refreshControls(false);
+  refreshLights();
   drawChart();
 }
 
@@ -368,6 +433,7 @@ $('pause').addEventListener('click', () => post(status && status.status === 'pau
 $('restart').addEventListener('click', () => post('/api/restart', { materials: 'current' }));
 $('reset').addEventListener('click', () => {
   lastEditTime = 0;
+  lightEditTime = 0;
   post('/api/restart', { materials: 'original' });
 });
 
@@ -382,6 +448,7 @@ window.rad = {
   get colourVersion() { return colourVersion; },
   objectId(name) { return scene.objects.findIndex((o) => o.name === name); },
   elements(name) { return status.objects[this.objectId(name)].elements; },
+  lightId(name) { return scene.lights.findIndex((l) => l.name === name); },
   /// CSS pixel position of a world point, relative to the canvas' top-left corner.
   project(p) {
     const v = new THREE.Vector3(...p).project(camera);
@@ -414,6 +481,7 @@ async function main() {
     if (o.kind === 'Pure') polygonObject.fill(o.id, o.first_triangle, o.first_triangle + o.triangle_count);
   }
   buildTree();
+  buildLights();
   resize();
   frameCamera();
   requestAnimationFrame(frame);
