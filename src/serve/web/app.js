@@ -18,7 +18,7 @@ let meshVersion = 0, colourVersion = 0;
 const latest = { version: 0, mesh_version: 0 };
 let selected = -1;          // selected object id
 let lastEditTime = 0;       // ms; panel values are not overwritten right after the user's edits
-let lightEditTime = 0;      // the same for the lights
+let lightEditTime = -Infinity;  // the same for the lights (none yet: the first status fills them)
 const settings = { onClick: 'select', wireframe: false, exposure: 0 };
 
 // ---------------------------------------------------------------- 3D view
@@ -433,7 +433,7 @@ $('pause').addEventListener('click', () => post(status && status.status === 'pau
 $('restart').addEventListener('click', () => post('/api/restart', { materials: 'current' }));
 $('reset').addEventListener('click', () => {
   lastEditTime = 0;
-  lightEditTime = 0;
+  lightEditTime = -Infinity;
   post('/api/restart', { materials: 'original' });
 });
 
