@@ -223,6 +223,42 @@ TEST_F(SessionTest, RestartSolvesAgainWithTheCurrentOrTheOriginalMaterials) {
   }
 }
 
+TEST_F(SessionTest, RestartKeepsTheEditedLightsOrGoesBackToTheScenes) {
+  Hierarchy lit = build_hierarchy(testing::serve_scene());
+  Light bulb;
+  bulb.name = "bulb";
+  bulb.position = Vec3(0.5f, 0.5f, 0.7f);
+  bulb.intensity = 2.0f;
+  lit.lights = {bulb};
+  const auto lit_vis = make_visibility_backend(BackendKind::Embree, lit);
+  Session s(lit, *lit_vis, options);
+  ASSERT_TRUE(s.edit_light(0, LightPatch{Vec3(1.0f, 0.5f, 0.5f), 6.0f}));
+  EXPECT_THROW(s.edit_light(1, LightPatch{{}, 1.0f}), Error);
+  EXPECT_THROW(s.edit_light(0, LightPatch{{}, -1.0f}), Error);
+  s.start();
+  auto lights_are = [](float intensity) {
+    return [intensity](const Snapshot& x) {
+      return converged(x) && x.lights.size() == 1 && x.lights[0].intensity == intensity;
+    };
+  };
+  ASSERT_TRUE(wait_for(s, lights_are(6.0f)));
+  ASSERT_TRUE(s.restart(false));
+  const auto kept = wait_for(s, [&](const Snapshot& x) {
+    return lights_are(6.0f)(x) && x.notice.find("current") != std::string::npos;
+  });
+  ASSERT_TRUE(kept);
+  EXPECT_EQ(kept->lights[0].colour, Vec3(1.0f, 0.5f, 0.5f));
+  ASSERT_TRUE(s.restart(true));
+  const auto reset = wait_for(s, [&](const Snapshot& x) {
+    return lights_are(2.0f)(x) && x.notice.find("scene's") != std::string::npos;
+  });
+  ASSERT_TRUE(reset);
+  EXPECT_EQ(reset->lights[0].colour, Vec3(1.0f));
+  s.stop();
+  EXPECT_EQ(s.state().solution.lights[0].intensity, 2.0f);
+  EXPECT_EQ(s.state().energy.light_unshot[0], Vec3(0.0f)) << "shot, nothing pending";
+}
+
 TEST_F(SessionTest, ForcedSubdivisionAddsElementsUntilTheMinimumSize) {
   options.solver.min_size = 0.02f;  // a few levels above the smallest elements
   Session s(h, *vis, options);
