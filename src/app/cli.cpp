@@ -51,8 +51,7 @@ const std::string kStageHelp = fmt::format(
 const std::string kSunHelp = fmt::format(
     "For a model: --stage outdoors: a sun of {:g} lux at ELEVATION,AZIMUTH degrees (azimuth from "
     "the front, +z, toward +x; default {:g},{:g}), the area light then a sky of {:g} lux",
-    kStageSunIlluminance, SunAngles{}.elevation_deg, SunAngles{}.azimuth_deg,
-    kStageSkyIlluminance);
+    kStageSunIlluminance, SunAngles{}.elevation_deg, SunAngles{}.azimuth_deg, kStageSkyIlluminance);
 
 // --emit, --stage, --sun and --hierarchy: how a scene file is read, for every mode.
 struct SceneReading {

@@ -19,8 +19,8 @@ class PolygonLocator {
   explicit PolygonLocator(const Triangles& t, const Aabb& bounds);
   /// The triangle holding x whose front faces along `front` (a surface's front normal, any
   /// length): of those whose plane passes within the tolerance of x and that face the same
-  /// way (within about 8 degrees), the one x lies nearest to (inside, or least outside; the lowest index among
-  /// equals), or -1 when none is within the tolerance. `stack` is the caller's, reused.
+  /// way (within about 8 degrees), the one x lies nearest to (inside, or least outside; the lowest
+  /// index among equals), or -1 when none is within the tolerance. `stack` is the caller's, reused.
   int32_t locate(const Vec3& x, const Vec3& front,
                  std::vector<std::pair<uint32_t, int>>& stack) const;
 
