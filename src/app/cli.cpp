@@ -148,6 +148,12 @@ struct Solving {
                    "gain divided by it (unbiased; far receivers cost less); 0: off")
         ->capture_default_str()
         ->check(CLI::NonNegativeNumber);
+    app.add_option("--penumbra-rays", o.penumbra_rays,
+                   "Where a vertex's shadow rays to a lamp's major shot disagree (a penumbra), or "
+                   "its rays to the lamp's corners do, this many more per sample, to points of "
+                   "its stratum that differ from vertex to vertex, and their mean (0: off)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 64));
     app.add_option("--converge", o.converge,
                    "Stop when unshot energy <= this fraction of the emitted energy")
         ->capture_default_str();

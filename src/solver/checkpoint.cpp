@@ -91,6 +91,8 @@ uint64_t solve_fingerprint(const Hierarchy& h, const SolverOptions& o, BackendKi
       .add(o.overshoot)
       .add(o.occlusion_culling)
       .add(backend);
+  // Only when on: a checkpoint written without penumbra rays stays valid.
+  if (o.penumbra_rays != 0) f.add(std::string_view("penumbra rays")).add(o.penumbra_rays);
   return f.value();
 }
 

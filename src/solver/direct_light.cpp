@@ -10,62 +10,6 @@
 
 namespace rad {
 
-namespace {
-
-// splitmix64: set k's draw for stratum g of a source, the same on every run and thread.
-uint64_t mix(uint64_t z) {
-  z += 0x9e3779b97f4a7c15ull;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
-
-// Set k's ends for `src`: each stratum's ray ends at one of the stratum's fine points, drawn
-// with probability proportional to its power (area x |mean channel|), or to its area where the
-// stratum has none; moved off the surface as the solver's ends are.
-void draw_ends(const ShotSource& src, uint32_t k, float offset, std::vector<float>& out) {
-  const size_t n = src.end_x.size();
-  out.assign(3 * n, 0.0f);
-  for (size_t g = 0; g < n; ++g)
-    out[g] = src.end_x[g], out[n + g] = src.end_y[g], out[2 * n + g] = src.end_z[g];
-  const SampleLanes& f = src.fine_sample;
-  const size_t lanes = SampleLanes::kLanes;
-  // Each stratum's lanes are one run of groups of lanes (make_shot_source).
-  size_t group = 0;
-  const size_t groups = src.fine_group_parent.size();
-  while (group < groups) {
-    const uint32_t g = src.fine_group_parent[group];
-    size_t last = group;
-    while (last < groups && src.fine_group_parent[last] == g) ++last;
-    double power = 0.0, area = 0.0;
-    for (size_t i = group * lanes; i < last * lanes; ++i) {
-      power += double(f.area[i]) * std::abs(double(mean_component(f.value(i))));
-      area += double(f.area[i]);
-    }
-    const bool by_power = power > 0.0;
-    const double total = by_power ? power : area;
-    if (total > 0.0 && g < n) {
-      const double draw =
-          (double(mix(uint64_t(k) * 0x100000001b3ull + g) >> 11) + 0.5) * 0x1p-53 * total;
-      double acc = 0.0;
-      size_t pick = group * lanes;
-      for (size_t i = group * lanes; i < last * lanes; ++i) {
-        const double w = by_power ? double(f.area[i]) * std::abs(double(mean_component(f.value(i))))
-                                  : double(f.area[i]);
-        if (w <= 0.0) continue;
-        pick = i;
-        acc += w;
-        if (acc >= draw) break;
-      }
-      const Vec3 end = off_surface(f.point(pick), f.normal(pick), offset);
-      out[g] = end.x, out[n + g] = end.y, out[2 * n + g] = end.z;
-    }
-    group = last;
-  }
-}
-
-}  // namespace
-
 DirectLight make_direct_light(const SolverState& s, uint32_t variants) {
   assert(variants >= 1);
   DirectLight d;
@@ -135,7 +79,7 @@ DirectLight make_direct_light(const SolverState& s, uint32_t variants) {
         e.insert(e.end(), src.end_y.begin(), src.end_y.end());
         e.insert(e.end(), src.end_z.begin(), src.end_z.end());
       } else {
-        draw_ends(d.sources[i], k, s.scene.shadow_offset, e);
+        draw_ray_ends(d.sources[i], k, s.scene.shadow_offset, e);
       }
     }
   }

@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <bit>
 #include <cassert>
 #include <cstring>
 #include <numbers>
@@ -143,21 +144,119 @@ std::optional<float> exact_form_factor(const Vec3& x, const Vec3& n, const ShotS
                                       src.axis, close ? Arithmetic::Single : Arithmetic::Double);
 }
 
-// One fan of shadow rays from x (moved off its surface) to the ends of the samples
-// active[which[0 .. count)], answers into blocked[0 .. count).
-void trace_fan(const Vec3& x, const Vec3& n, const ShotSource& src, const uint32_t* which,
-               size_t count, const VisibilityBackend& vis, const GatherSettings& st,
-               GatherScratch& scratch, uint8_t* blocked) {
+// One fan of shadow rays from x (moved off its surface) to the ends (ex, ey, ez, indexed by
+// sample) of the samples active[which[0 .. count)], answers into blocked[0 .. count).
+void trace_fan_to(const Vec3& x, const Vec3& n, const float* ex, const float* ey, const float* ez,
+                  const uint32_t* which, size_t count, const VisibilityBackend& vis,
+                  const GatherSettings& st, GatherScratch& scratch, uint8_t* blocked) {
   scratch.end_x.resize(count), scratch.end_y.resize(count), scratch.end_z.resize(count);
   for (size_t j = 0; j < count; ++j) {
     const uint32_t i = scratch.active[which ? which[j] : j];
-    scratch.end_x[j] = src.end_x[i];
-    scratch.end_y[j] = src.end_y[i];
-    scratch.end_z[j] = src.end_z[i];
+    scratch.end_x[j] = ex[i];
+    scratch.end_y[j] = ey[i];
+    scratch.end_z[j] = ez[i];
   }
   const SegmentFan fan{off_surface(x, n, st.shadow_offset), scratch.end_x.data(),
                        scratch.end_y.data(), scratch.end_z.data(), count};
   vis.occluded_fan(fan, std::span<uint8_t>(blocked, count), scratch.stats.rays);
+}
+
+// The same to the shot's own ends.
+void trace_fan(const Vec3& x, const Vec3& n, const ShotSource& src, const uint32_t* which,
+               size_t count, const VisibilityBackend& vis, const GatherSettings& st,
+               GatherScratch& scratch, uint8_t* blocked) {
+  trace_fan_to(x, n, src.end_x.data(), src.end_y.data(), src.end_z.data(), which, count, vis, st,
+               scratch, blocked);
+}
+
+// A point's seed for its penumbra rounds: its coordinates' bits, mixed (splitmix64's
+// finaliser), so neighbouring points see a stratum through different points and the same point
+// always through the same ones, on any thread or rank.
+uint64_t mix_bits(uint64_t z) {
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+uint64_t point_seed(const Vec3& x) {
+  return mix_bits(mix_bits(mix_bits(std::bit_cast<uint32_t>(x.x)) ^ std::bit_cast<uint32_t>(x.y)) ^
+                  std::bit_cast<uint32_t>(x.z));
+}
+
+// Whether `src` gets penumbra rounds: a major shot with fine points to draw from, whose mean
+// sample carries at least st.penumbra_sample_energy. A sample's step in a penumbra is worth
+// what it carries: the lamps' first shots step by a sixteenth of their light, and the rounds go
+// there; a wall shot again and again carries a few percent over 64 samples, its steps are small
+// and its shadow rays many, and answers kept for its own ends are what keep it cheap.
+bool penumbra_source(const ShotSource& src, const GatherSettings& st) {
+  if (!src.major || src.fine_sample.empty() || src.sample_count == 0) return false;
+  const double energy = double(src.area) * std::abs(double(mean_component(src.mean_unshot)));
+  return energy >= st.penumbra_sample_energy * double(src.sample_count);
+}
+
+// Whether a ray to a corner of a planar source's outline finds it `hidden` otherwise than the
+// vertex's rays to the samples all did. Those rays end inside the strata, so a vertex near a
+// penumbra's edge may find them all blocked though a sliver of the source shows, or all clear
+// though a sliver is hidden. A straight occluding edge cuts a convex source into two parts each
+// holding one of its corners, so rays to the corners see both. At most kCornerProbes corners,
+// evenly spaced along the outline, each a thousandth of the way to the centroid.
+constexpr size_t kCornerProbes = 8;
+bool corners_disagree(const Vec3& x, const Vec3& n, const ShotSource& src, bool hidden,
+                      const VisibilityBackend& vis, const GatherSettings& st,
+                      GatherScratch& scratch) {
+  const size_t corners = src.edge_a.size();
+  if (!src.planar || corners == 0) return false;
+  const size_t step = (corners + kCornerProbes - 1) / kCornerProbes;
+  scratch.end_x.resize(kCornerProbes), scratch.end_y.resize(kCornerProbes);
+  scratch.end_z.resize(kCornerProbes);
+  size_t count = 0;
+  for (size_t i = 0; i < corners && count < kCornerProbes; i += step) {
+    const Vec3 c = src.edge_a[i] + (src.centroid - src.edge_a[i]) * 1e-3f;
+    if (!(glm::dot(c - x, n) > 0.0f)) continue;  // behind the vertex: no light from there
+    const Vec3 end = off_surface(c, src.axis, st.shadow_offset);
+    scratch.end_x[count] = end.x, scratch.end_y[count] = end.y, scratch.end_z[count] = end.z;
+    ++count;
+  }
+  if (count == 0) return false;
+  scratch.blocked.resize(std::max(scratch.blocked.size(), count));
+  const SegmentFan fan{off_surface(x, n, st.shadow_offset), scratch.end_x.data(),
+                       scratch.end_y.data(), scratch.end_z.data(), count};
+  vis.occluded_fan(fan, std::span<uint8_t>(scratch.blocked.data(), count), scratch.stats.rays);
+  for (size_t j = 0; j < count; ++j)
+    if (bool(scratch.blocked[j]) != hidden) return true;
+  return false;
+}
+
+// scratch.clear[j] for the active samples j < na, from their answers in scratch.blocked: 1 or
+// 0 where they all agree and so do the rays to the source's corners (the point sees all of the
+// source or none of it); where they disagree (a penumbra), for a source that gets them
+// (penumbra_source), st.penumbra_rays more rounds, round r
+// to the ends draw_ray_ends gives the key of (x, r), and the part of each sample's rays that
+// reach it. The extra rounds' answers are not kept: their ends move with the point.
+void penumbra_rounds(const Vec3& x, const Vec3& n, const ShotSource& src, size_t na,
+                     const VisibilityBackend& vis, const GatherSettings& st,
+                     GatherScratch& scratch) {
+  scratch.clear.resize(na);
+  size_t blocked = 0;
+  for (size_t j = 0; j < na; ++j) {
+    blocked += scratch.blocked[j];
+    scratch.clear[j] = scratch.blocked[j] ? 0.0f : 1.0f;
+  }
+  if (st.penumbra_rays == 0 || !penumbra_source(src, st)) return;
+  if ((blocked == 0 || blocked == na) &&
+      !corners_disagree(x, n, src, blocked == na, vis, st, scratch))
+    return;
+  const uint64_t seed = point_seed(x);
+  const size_t m = src.end_x.size();
+  scratch.blocked.resize(na);
+  for (uint32_t r = 1; r <= st.penumbra_rays; ++r) {
+    draw_ray_ends(src, seed ^ (uint64_t(r) * 0x9e3779b97f4a7c15ull), st.shadow_offset,
+                  scratch.round_ends);
+    const float* e = scratch.round_ends.data();
+    trace_fan_to(x, n, e, e + m, e + 2 * m, nullptr, na, vis, st, scratch, scratch.blocked.data());
+    for (size_t j = 0; j < na; ++j) scratch.clear[j] += scratch.blocked[j] ? 0.0f : 1.0f;
+  }
+  const float mean = 1.0f / float(st.penumbra_rays + 1);
+  for (size_t j = 0; j < na; ++j) scratch.clear[j] *= mean;
 }
 
 // scratch.blocked[j] for the active sample scratch.active[j], j < na: traced, or read from the
@@ -272,13 +371,15 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
     if (blocked) return Vec3(0.0f);
   }
   const bool traced = st.shadows && !cut && na > 0;
-  if (traced) trace_active(x, n, src, na, vis, st, scratch, kept);
+  if (traced) {
+    trace_active(x, n, src, na, vis, st, scratch, kept);
+    penumbra_rounds(x, n, src, na, vis, st, scratch);
+  }
 
   if (fine_eq7) {
     scratch.coarse_visible.assign(ns, traced ? 0.0f : 1.0f);
     if (traced) {
-      for (size_t j = 0; j < na; ++j)
-        scratch.coarse_visible[scratch.active[j]] = scratch.blocked[j] ? 0.0f : 1.0f;
+      for (size_t j = 0; j < na; ++j) scratch.coarse_visible[scratch.active[j]] = scratch.clear[j];
     }
     return add_kernels<false>(src.fine_sample, x, n, scratch.coarse_visible.data(),
                               src.fine_group_parent.data(), nullptr)
@@ -289,8 +390,7 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
   if (ff && !src.fine_sample.empty() && glm::dot(x - src.centroid, src.axis) < src.near_distance) {
     scratch.coarse_visible.assign(ns, 1.0f);
     if (traced) {
-      for (size_t j = 0; j < na; ++j)
-        scratch.coarse_visible[scratch.active[j]] = scratch.blocked[j] ? 0.0f : 1.0f;
+      for (size_t j = 0; j < na; ++j) scratch.coarse_visible[scratch.active[j]] = scratch.clear[j];
     }
     Vec3 mean;
     if (near_field_mean(x, n, src, scratch.coarse_visible.data(), &mean)) return mean * *ff;
@@ -303,7 +403,8 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
   // umbra gets exactly zero.
   Vec3 visible(0.0f);
   for (size_t j = 0; j < na; ++j) {
-    if (!scratch.blocked[j]) visible += sm.value(scratch.active[j]) * k[scratch.active[j]];
+    const float c = scratch.clear[j];  // k x 1 is k: all-or-nothing points as they were
+    if (c > 0.0f) visible += sm.value(scratch.active[j]) * (k[scratch.active[j]] * c);
   }
   return visible * scale;
 }

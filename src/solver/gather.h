@@ -19,7 +19,9 @@ struct GatherScratch {
   std::vector<float> weight;  // coarse samples' kernels
   std::vector<uint32_t> active;
   std::vector<uint32_t> unknown;      // active samples (indices into `active`) with no kept answer
-  std::vector<float> coarse_visible;  // near field: 1 or 0 per coarse sample
+  std::vector<float> coarse_visible;  // near field: visible part of each coarse sample
+  std::vector<float> round_ends;      // a penumbra round's ends (draw_ray_ends)
+  std::vector<float> clear;           // per active sample, the part of its rays not blocked
   SolverStats stats;
 };
 
@@ -29,6 +31,14 @@ struct GatherSettings {
   float cut = 0.0f;  // absolute intensity-cut level (radiosity units)
   float shadow_offset = 0.0f;
   float inset = 1e-4f;  // fraction of the way to the polygon centroid a point moves
+  /// Penumbra rounds (SolverOptions::penumbra_rays): where a point's rays to a shot's
+  /// samples (or to its corners) disagree, this many more rays per sample, each round to other
+  /// points of the strata drawn by a hash of the point, and the visibility of each sample their
+  /// mean.
+  uint32_t penumbra_rays = 0;
+  /// Rounds only for shots whose mean sample carries at least this energy (area x mean-channel
+  /// radiosity).
+  double penumbra_sample_energy = 0.0;
 };
 
 /// Where x lies against every triangle of the source, conservatively: +1 in front of all, -1

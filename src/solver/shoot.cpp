@@ -14,6 +14,8 @@ GatherSettings gather_settings(const SolverState& s) {
   g.shadows = s.options.shadows;
   g.cut = s.options.intensity_cut * s.energy.radiosity_scale;
   g.shadow_offset = s.scene.shadow_offset;
+  g.penumbra_rays = uint32_t(std::max(0, s.options.penumbra_rays));
+  g.penumbra_sample_energy = SolverOptions::kPenumbraSampleShare * s.energy.reference_energy;
   return g;
 }
 

@@ -253,6 +253,59 @@ void aim_roulette(ShotSource& src, float level, int64_t shot) {
   src.roulette_draw = open_unit_draw(z);
 }
 
+namespace {
+
+// splitmix64: the draw of a key for one stratum.
+uint64_t mix64(uint64_t z) {
+  z += 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+}  // namespace
+
+void draw_ray_ends(const ShotSource& src, uint64_t key, float offset, std::vector<float>& out) {
+  const size_t n = src.end_x.size();
+  out.resize(3 * n);
+  std::copy(src.end_x.begin(), src.end_x.end(), out.begin());
+  std::copy(src.end_y.begin(), src.end_y.end(), out.begin() + long(n));
+  std::copy(src.end_z.begin(), src.end_z.end(), out.begin() + long(2 * n));
+  const SampleLanes& f = src.fine_sample;
+  const size_t lanes = SampleLanes::kLanes;
+  // Each stratum's lanes are one run of groups of lanes (make_shot_source).
+  size_t group = 0;
+  const size_t groups = src.fine_group_parent.size();
+  while (group < groups) {
+    const uint32_t g = src.fine_group_parent[group];
+    size_t last = group;
+    while (last < groups && src.fine_group_parent[last] == g) ++last;
+    double power = 0.0, area = 0.0;
+    for (size_t i = group * lanes; i < last * lanes; ++i) {
+      power += double(f.area[i]) * std::abs(double(mean_component(f.value(i))));
+      area += double(f.area[i]);
+    }
+    const bool by_power = power > 0.0;
+    const double total = by_power ? power : area;
+    if (total > 0.0 && g < n) {
+      const double draw = (double(mix64(key * 0x100000001b3ull + g) >> 11) + 0.5) * 0x1p-53 * total;
+      double acc = 0.0;
+      size_t pick = group * lanes;
+      for (size_t i = group * lanes; i < last * lanes; ++i) {
+        const double w = by_power ? double(f.area[i]) * std::abs(double(mean_component(f.value(i))))
+                                  : double(f.area[i]);
+        if (w <= 0.0) continue;
+        pick = i;
+        acc += w;
+        if (acc >= draw) break;
+      }
+      const Vec3 end = off_surface(f.point(pick), f.normal(pick), offset);
+      out[g] = end.x, out[n + g] = end.y, out[2 * n + g] = end.z;
+    }
+    group = last;
+  }
+}
+
 float open_unit_draw(uint64_t bits) { return (float(bits >> 41) + 0.5f) * 0x1p-23f; }
 
 }  // namespace rad

@@ -148,6 +148,15 @@ ShotSource make_shot_source(const SolverState& s, int32_t c);
 /// rather than its unshot radiosity: the direct light it gives (direct_light.h).
 ShotSource make_emission_source(const SolverState& s, int32_t c);
 
+/// Set `key`'s shadow-ray ends for `src`, x then y then z (3 x its ends) in `out`: each
+/// stratum's ray ends at one of the stratum's fine points, drawn with probability proportional
+/// to its power (area x |mean channel|), or to its area where the stratum has none, by a fixed
+/// hash of (key, stratum); moved off the surface by `offset` as the shot's own ends are. A
+/// stratum without fine points keeps the shot's end. The same key gives the same ends on every
+/// run, thread and rank; different keys see a stratum's visibility through different points.
+/// No allocation once `out` holds 3 x the ends.
+void draw_ray_ends(const ShotSource& src, uint64_t key, float offset, std::vector<float>& out);
+
 /// The draw of 64 random bits: their top 23 bits plus a half, over 2^23, in (0, 1) and exact in
 /// a float (at most 1 - 2^-24; 24 bits plus a half would round the largest up to 1).
 float open_unit_draw(uint64_t bits);
