@@ -77,7 +77,11 @@ struct SolverOptions {
   /// corners' rays. Only for the shots of kPenumbraSampleShare. 0: off. 8: the umbra scene
   /// (scenes/umbra.des) from 1.01% to 0.82% of mean error against its reference, for 2% more
   /// shadow rays in the Cornell box (docs/solver.md).
-  int penumbra_rays = 8;
+  // Off by default: the final render separates each vertex's direct light by gathering it again
+  // with the shots' own ray ends (solver/direct_light.h), which extra rounds make inexact
+  // (tools/bench --pictures: 0.295% -> 0.326% on the Cornell box, 0.325% -> 0.611% on the
+  // umbra scene).
+  int penumbra_rays = 0;
   /// Penumbra rays go to the shots whose mean sample carries at least this fraction of the
   /// emitted energy: a lamp's first shot (its 16 samples step by a sixteenth of its light), not
   /// the walls' many shots over up to 64 samples, whose steps are small.
