@@ -32,7 +32,7 @@ BackendKind parse_backend_kind(std::string_view name) {
 std::unique_ptr<VisibilityBackend> make_visibility_backend(BackendKind kind, const Hierarchy& h,
                                                            const VisibilityOptions& options) {
   // Every backend traces against the same merged surfaces (none keeps the hierarchy after
-  // its build), so they agree as before, and a tessellated wall costs them what the wall does.
+  // its build), so they agree exactly, and a tessellated wall costs them what the wall does.
   const std::optional<Hierarchy> merged = merge_flat_regions(h);
   const Hierarchy& occluders = merged ? *merged : h;
   switch (kind) {
