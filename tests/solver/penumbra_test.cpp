@@ -10,54 +10,18 @@
 #include "scene_builder.h"
 #include "solver/gather.h"
 #include "solver/shoot.h"
+#include "umbra_scene.h"
 
 namespace rad {
 namespace {
 
-constexpr float kLampHeight = 2.0f, kLampHalf = 0.15f, kBlockerHeight = 1.0f, kBlockerHalf = 0.5f,
-                kLampEmission = 30.0f;
-
-// A floor (y = 0), a black square blocker at height 1 and a small square lamp at height 2
-// facing down, in the void. Triangles: floor 0-1, blocker 2-5, lamp 6-7.
-SceneDescription umbra_scene() {
-  SceneDescription d;
-  const float f = 2.0f, b = kBlockerHalf, l = kLampHalf;
-  testing::add_quad(d, "floor", {-f, 0, -f}, {-f, 0, f}, {f, 0, f}, {f, 0, -f}, Vec3(0.5f),
-                    Vec3(0.0f));
-  testing::add_quad(d, "blocker top", {-b, kBlockerHeight, -b}, {-b, kBlockerHeight, b},
-                    {b, kBlockerHeight, b}, {b, kBlockerHeight, -b}, Vec3(0.0f), Vec3(0.0f));
-  testing::add_quad(d, "blocker bottom", {-b, kBlockerHeight, -b}, {b, kBlockerHeight, -b},
-                    {b, kBlockerHeight, b}, {-b, kBlockerHeight, b}, Vec3(0.0f), Vec3(0.0f));
-  testing::add_quad(d, "lamp", {-l, kLampHeight, -l}, {l, kLampHeight, -l}, {l, kLampHeight, l},
-                    {-l, kLampHeight, l}, Vec3(0.0f), Vec3(kLampEmission));
-  return d;
-}
-
-// The form factor from a point to the rectangle [x0, x1] x [z0, z1] of a parallel plane h above
-// it, facing it (coordinates relative to the point): the corner formula summed by inclusion
-// and exclusion.
-double rectangle_factor(double x0, double x1, double z0, double z1, double h) {
-  auto corner = [h](double a, double b) {
-    const double ah = std::sqrt(a * a + h * h), bh = std::sqrt(b * b + h * h);
-    return (a / ah * std::atan(b / ah) + b / bh * std::atan(a / bh)) / (2.0 * std::numbers::pi);
-  };
-  return corner(x1, z1) - corner(x0, z1) - corner(x1, z0) + corner(x0, z0);
-}
-
-// The exact direct gain at floor point (x, 0, z): the lamp less the part of it the blocker
-// hides, which seen from the point is the blocker scaled by 2 (the lamp is twice its height).
-double exact_direct(double x, double z) {
-  const double l = kLampHalf, s = kLampHeight / kBlockerHeight;
-  const double lamp = rectangle_factor(-l - x, l - x, -l - z, l - z, kLampHeight);
-  const double sx0 = std::max(-l, s * -kBlockerHalf - (s - 1.0) * x);
-  const double sx1 = std::min(l, s * kBlockerHalf - (s - 1.0) * x);
-  const double sz0 = std::max(-l, s * -kBlockerHalf - (s - 1.0) * z);
-  const double sz1 = std::min(l, s * kBlockerHalf - (s - 1.0) * z);
-  const double hidden = sx0 < sx1 && sz0 < sz1
-                            ? rectangle_factor(sx0 - x, sx1 - x, sz0 - z, sz1 - z, kLampHeight)
-                            : 0.0;
-  return kLampEmission * (lamp - hidden);
-}
+using testing::exact_direct;
+using testing::kBlockerHalf;
+using testing::kLampEmission;
+using testing::kLampHalf;
+using testing::kLampHeight;
+using testing::rectangle_factor;
+using testing::umbra_scene;
 
 struct Umbra {
   Hierarchy h = build_hierarchy(umbra_scene());
