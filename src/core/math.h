@@ -1,6 +1,7 @@
 // Vector types used across rad (GLM, single precision for geometry).
 #pragma once
 
+#include <cstdint>
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -18,5 +19,14 @@ inline float max_component(const Vec3& v) { return glm::max(v.x, glm::max(v.y, v
 
 /// Mean of the three components (a colour's grey level).
 inline float mean_component(const Vec3& v) { return (v.x + v.y + v.z) * (1.0f / 3.0f); }
+
+/// splitmix64 (Steele, Lea and Flood 2014): 64 well-mixed bits of a key, the same on every run,
+/// thread and rank; what every deterministic draw of the project is made from.
+inline uint64_t splitmix64(uint64_t z) {
+  z += 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
 
 }  // namespace rad

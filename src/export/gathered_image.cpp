@@ -31,13 +31,6 @@ constexpr float kPenumbra = 1e-3f;
 // Rows traced, separated and shaded together: what is held at once is a band's hits.
 constexpr int kBandRows = 16;
 
-uint64_t mix(uint64_t z) {
-  z += 0x9e3779b97f4a7c15ull;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
-
 float unit(uint64_t bits) { return float(bits >> 40) * 0x1p-24f; }
 
 // What a camera subsample met: a polygon and the point on it, or nothing (polygon -1), or a
@@ -106,7 +99,7 @@ Image render_gathered_image(const SolverState& s, const VisibilityBackend& vis,
   GatheredImageStats st;
 
   auto set_of = [&](size_t pixel, size_t sub) {
-    return uint32_t(mix(uint64_t(pixel) * 131u + sub + 0x5eedull) % kEndSets);
+    return uint32_t(splitmix64(uint64_t(pixel) * 131u + sub + 0x5eedull) % kEndSets);
   };
 
   for (int y0 = 0; y0 < o.height; y0 += kBandRows) {
@@ -122,11 +115,12 @@ Image render_gathered_image(const SolverState& s, const VisibilityBackend& vis,
         for (size_t x = 0; x < w; ++x) {
           const size_t pixel = size_t(y) * w + x;
           for (size_t k = 0; k < spp; ++k) {
-            const uint64_t bits = mix(uint64_t(pixel) * 0x9e37u + k);
+            const uint64_t bits = splitmix64(uint64_t(pixel) * 0x9e37u + k);
             const float u =
                 (float(x) + (float(k % size_t(n)) + unit(bits)) / float(n)) / float(o.width);
             const float v =
-                (float(y) + (float(k / size_t(n)) + unit(mix(bits))) / float(n)) / float(o.height);
+                (float(y) + (float(k / size_t(n)) + unit(splitmix64(bits))) / float(n)) /
+                float(o.height);
             const Vec3 dir =
                 glm::normalize(f.forward + f.right * ((2.0f * u - 1.0f) * f.tan_half_x) +
                                f.up * ((1.0f - 2.0f * v) * f.tan_half_y));

@@ -245,25 +245,8 @@ void aim_roulette(ShotSource& src, float level, int64_t shot) {
   if (!(peak > 0.0f && peak < std::numeric_limits<float>::max())) return;  // nothing, NaN, inf
   src.roulette_peak = std::min(1.0f, peak / level);
   src.roulette_reach2 = peak * src.area / (std::numbers::pi_v<float> * level);
-  // splitmix64 of the shot number.
-  uint64_t z = uint64_t(shot) + 0x9e3779b97f4a7c15ull;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  z ^= z >> 31;
-  src.roulette_draw = open_unit_draw(z);
+  src.roulette_draw = open_unit_draw(splitmix64(uint64_t(shot)));
 }
-
-namespace {
-
-// splitmix64: the draw of a key for one stratum.
-uint64_t mix64(uint64_t z) {
-  z += 0x9e3779b97f4a7c15ull;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
-
-}  // namespace
 
 void draw_ray_ends(const ShotSource& src, uint64_t key, float offset, std::vector<float>& out) {
   const size_t n = src.end_x.size();
@@ -288,7 +271,8 @@ void draw_ray_ends(const ShotSource& src, uint64_t key, float offset, std::vecto
     const bool by_power = power > 0.0;
     const double total = by_power ? power : area;
     if (total > 0.0 && g < n) {
-      const double draw = (double(mix64(key * 0x100000001b3ull + g) >> 11) + 0.5) * 0x1p-53 * total;
+      const double draw =
+          (double(splitmix64(key * 0x100000001b3ull + g) >> 11) + 0.5) * 0x1p-53 * total;
       double acc = 0.0;
       size_t pick = group * lanes;
       for (size_t i = group * lanes; i < last * lanes; ++i) {
