@@ -111,8 +111,8 @@ uint32_t owen_scramble(uint32_t x, uint32_t seed) {
 
 uint32_t hash_seed(uint64_t seed, uint64_t pixel, uint64_t what) {
   uint64_t s = seed ^ (pixel * 0xD1B54A32D192ED03ull) ^ (what * 0x9E3779B97F4A7C15ull);
-  splitmix64(s);
-  return uint32_t(splitmix64(s) >> 32);
+  splitmix64_next(s);
+  return uint32_t(splitmix64_next(s) >> 32);
 }
 
 // Dimension `dim` of point `i` of block `block` of a pixel's points, in [0, 1).

@@ -4,15 +4,16 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "core/math.h"
+
 namespace rad {
 
-/// SplitMix64 (Steele, Lea, Flood 2014): one step of a 64-bit mixing sequence. Used to turn a
-/// (seed, index) pair into well-spread generator seeds.
-inline uint64_t splitmix64(uint64_t& state) {
-  uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
+/// One step of the splitmix64 sequence (core/math.h) started at `state`: the mix of the current
+/// state, then the state moves on. Turns a (seed, index) pair into well-spread generator seeds.
+inline uint64_t splitmix64_next(uint64_t& state) {
+  const uint64_t out = splitmix64(state);
+  state += 0x9E3779B97F4A7C15ull;
+  return out;
 }
 
 /// PCG32 (O'Neill 2014, pcg32 "XSH RR"): a small, fast generator whose stream is fixed by its
@@ -22,8 +23,8 @@ class Pcg32 {
   /// The generator for item `index` of a run seeded by `seed` (independent streams per index).
   Pcg32(uint64_t seed, uint64_t index) {
     uint64_t s = seed ^ (index * 0xD1B54A32D192ED03ull);
-    const uint64_t init = splitmix64(s);
-    inc_ = (splitmix64(s) << 1u) | 1u;
+    const uint64_t init = splitmix64_next(s);
+    inc_ = (splitmix64_next(s) << 1u) | 1u;
     state_ = 0;
     next();
     state_ += init;
