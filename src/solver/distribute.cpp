@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cassert>
 #include <type_traits>
 
@@ -82,6 +83,8 @@ std::vector<RankReport> collect(SolverState& s) {
       write_polygon(w, s.solution.mesh.polygons[p], s.solution.vertex_states[p],
                     s.solution.texture_factors[p], s.scene.shared.copies[p]);
       w.pod(s.energy.unshot_energy[p]);
+      // Where its buried vertices gather: what rank 0 renders and solves light groups with.
+      w.vec(p < s.scene.buried.moved.size() ? s.scene.buried.moved[p] : std::vector<MovedVertex>{});
     }
   }
   // Every polygon of every rank must come: count them as they arrive.
@@ -102,6 +105,13 @@ std::vector<RankReport> collect(SolverState& s) {
                    s.solution.mesh.polygons.size(),
                    is_textured(s.solution.hierarchy->triangles, p, s.solution.object_of(p)));
       s.energy.unshot_energy[p] = in.pod<UnshotEnergy>();
+      std::vector<MovedVertex> moved;
+      in.vec(moved);
+      if (!moved.empty() || p < s.scene.buried.moved.size()) {
+        s.scene.buried.moved.resize(
+            std::max(s.scene.buried.moved.size(), s.solution.mesh.polygons.size()));
+        s.scene.buried.moved[p] = std::move(moved);
+      }
       ++received[size_t(r)];
     }
     if (r > 0 && received[size_t(r)] != expected[size_t(r)])
