@@ -53,9 +53,10 @@ const std::string kSunHelp = fmt::format(
     "the front, +z, toward +x; default {:g},{:g}), the area light then a sky of {:g} lux",
     kStageSunIlluminance, SunAngles{}.elevation_deg, SunAngles{}.azimuth_deg, kStageSkyIlluminance);
 
-// --emit, --stage, --sun and --hierarchy: how a scene file is read, for every mode.
+// --emit, --light-group, --stage, --sun and --hierarchy: how a scene file is read, for every mode.
 struct SceneReading {
   std::vector<std::string> emit;
+  std::vector<std::string> light_groups;
   std::string hierarchy;
   bool stage = false;
   std::string sun;
@@ -63,6 +64,14 @@ struct SceneReading {
 
   void add_to(CLI::App& app, const char* emit_help, const char* hierarchy_help) {
     app.add_option("--emit", emit, emit_help)
+        ->expected(1)
+        ->allow_extra_args(false)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    app.add_option("--light-group", light_groups,
+                   "For a model: its materials and lights whose name matches the pattern are in "
+                   "light group NAME, e.g. --light-group 'Lamp*=kitchen' (repeatable; a "
+                   "description says 'Group \"NAME\"'). Each group's light is solved and written "
+                   "on its own, to be mixed after the solve")
         ->expected(1)
         ->allow_extra_args(false)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
@@ -77,6 +86,12 @@ struct SceneReading {
       for (const std::string& e : emit) in.model.emit.push_back(parse_emit_rule(e));
     } catch (const Error& e) {
       throw CLI::ValidationError("--emit", e.message());
+    }
+    try {
+      for (const std::string& g : light_groups)
+        in.model.light_groups.push_back(parse_group_rule(g));
+    } catch (const Error& e) {
+      throw CLI::ValidationError("--light-group", e.message());
     }
     if (stage || sun_option->count() > 0) {
       StageOptions o;

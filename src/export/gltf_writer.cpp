@@ -261,6 +261,10 @@ void write_gltf(std::ostream& out, const OutputMesh& mesh, const ToneMap& tm, bo
     prim.attributes["POSITION"] = add_vec3(m, mesh.position(), true);
     prim.attributes["COLOR_0"] = add_vec3(m, colour, false);
     prim.attributes["_RADIOSITY"] = add_vec3(m, mesh.radiosity, false);
+    for (size_t g = 0; g < mesh.group_radiosity.size(); ++g) {
+      prim.attributes["_RADIOSITY_GROUP_" + std::to_string(g)] =
+          add_vec3(m, mesh.group_radiosity[g], false);
+    }
 
     tinygltf::Material mat;
     mat.name = "radiosity (unlit vertex colours)";
@@ -272,11 +276,15 @@ void write_gltf(std::ostream& out, const OutputMesh& mesh, const ToneMap& tm, bo
 
     tinygltf::Mesh gm;
     gm.name = "radiosity";
-    if (textured) {
-      tinygltf::Value::Object extras;
-      extras["colour_scale"] = tinygltf::Value(double(scale));
-      gm.extras = tinygltf::Value(extras);
+    tinygltf::Value::Object extras;
+    if (textured) extras["colour_scale"] = tinygltf::Value(double(scale));
+    if (!mesh.group_names.empty()) {
+      // _RADIOSITY_GROUP_i is the radiosity of light group light_groups[i] alone.
+      tinygltf::Value::Array names;
+      for (const std::string& g : mesh.group_names) names.push_back(tinygltf::Value(g));
+      extras["light_groups"] = tinygltf::Value(names);
     }
+    if (!extras.empty()) gm.extras = tinygltf::Value(extras);
     if (!textured) {
       prim.indices = add_indices(m, mesh.indices());
       m.materials.push_back(mat);

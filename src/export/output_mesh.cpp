@@ -220,12 +220,33 @@ void OutputMeshBuilder::reset() {
   geometry_.reset();
 }
 
-OutputMesh make_output_mesh(const SolverState& s, bool ambient) {
+std::vector<Vec3> OutputMeshBuilder::per_vertex(
+    const std::function<Vec3(size_t, uint32_t)>& value) const {
+  std::vector<Vec3> out;
+  out.reserve(geometry_ ? geometry_->position.size() : 0);
+  for (size_t p = 0; p < polygons_.size(); ++p) {
+    const uint32_t n = uint32_t(polygons_[p].vertices);
+    for (uint32_t v = 0; v < n; ++v) out.push_back(value(p, v));
+    for (const auto& k : polygons_[p].faces.centroids)
+      out.push_back((value(p, k[0]) + value(p, k[1]) + value(p, k[2])) / 3.0f);
+    for (const VertexRef& r : polygons_[p].faces.seam) out.push_back(value(r.polygon, r.vertex));
+  }
+  return out;
+}
+
+OutputMesh make_output_mesh(const SolverState& s, bool ambient, const LightGroupSolution* groups) {
   OutputMeshBuilder builder;
   OutputMesh out;
   bool changed = false;
   out.geometry = builder.update(s, &changed);
   builder.values(s, ambient ? ambient_radiosity(s.energy, s.solution) : Vec3(0.0f), out);
+  if (groups) {
+    out.group_names = groups->names;
+    for (size_t g = 0; g < groups->names.size(); ++g) {
+      out.group_radiosity.push_back(
+          builder.per_vertex([&](size_t p, uint32_t v) { return groups->at(g, p, v); }));
+    }
+  }
   return out;
 }
 

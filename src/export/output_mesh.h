@@ -3,10 +3,13 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "mesh/output_faces.h"
+#include "solver/light_groups.h"
 #include "solver/solver_state.h"
 
 namespace rad {
@@ -60,6 +63,10 @@ struct OutputMesh {
   /// light a viewer multiplies the texture by (for a surface that does not emit: the material's
   /// factor times H plus the ambient term).
   std::vector<Vec3> texel;
+  /// With light groups (solver/light_groups.h), their names and per group, per vertex, the
+  /// radiosity B of the group's light alone (laid out as `radiosity`); empty otherwise.
+  std::vector<std::string> group_names;
+  std::vector<std::vector<Vec3>> group_radiosity;
 
   const std::vector<Vec3>& position() const { return geometry->position; }
   const std::vector<uint32_t>& indices() const { return geometry->indices; }
@@ -84,6 +91,10 @@ class OutputMeshBuilder {
   /// Leaves out.geometry as it is.
   void values(const SolverState& s, Vec3 ambient, OutputMesh& out) const;
 
+  /// Per vertex of the last update's geometry, value(p, v) of the polygon vertex it stands for
+  /// (centroids: the mean of their three), as `values` lays out radiosity.
+  std::vector<Vec3> per_vertex(const std::function<Vec3(size_t, uint32_t)>& value) const;
+
   /// Forgets every polygon (after the state was replaced).
   void reset();
 
@@ -101,7 +112,8 @@ class OutputMeshBuilder {
 };
 
 /// The whole solve flattened at once. With `ambient`, display adds Cohen's ambient term times
-/// each polygon's reflectance.
-OutputMesh make_output_mesh(const SolverState& s, bool ambient);
+/// each polygon's reflectance. With `groups` (solved on s's mesh), each group's radiosity too.
+OutputMesh make_output_mesh(const SolverState& s, bool ambient,
+                            const LightGroupSolution* groups = nullptr);
 
 }  // namespace rad

@@ -4,6 +4,7 @@
 
 #include <bit>
 #include <cstring>
+#include <string>
 
 namespace rad {
 
@@ -19,17 +20,29 @@ void put(std::ostream& out, T v) {
 
 void write_ply(std::ostream& out, const OutputMesh& m, const ToneMap& tm, bool ascii) {
   const bool uv = !m.uv().empty();
+  const size_t groups = m.group_radiosity.size();
+  std::string group_header;
+  for (size_t g = 0; g < groups; ++g) {
+    group_header += fmt::format(
+        "property float group{0}_r\nproperty float group{0}_g\n"
+        "property float group{0}_b\n",
+        g);
+  }
   out << "ply\n"
       << (ascii ? "format ascii 1.0\n" : "format binary_little_endian 1.0\n")
       << "comment rad radiosity: rgb = display colour (sRGB), radiosity_* = linear radiosity B, "
-         "irradiance_* = the light arriving H (B = E + rho H; lux with photometric lights)\n"
-      << "element vertex " << m.position().size() << "\n"
+         "irradiance_* = the light arriving H (B = E + rho H; lux with photometric lights)\n";
+  for (size_t g = 0; g < groups; ++g) {
+    out << "comment light group " << g << " \"" << m.group_names[g]
+        << "\": groupN_* = linear radiosity B of that group's light alone\n";
+  }
+  out << "element vertex " << m.position().size() << "\n"
       << "property float x\nproperty float y\nproperty float z\n"
       << "property uchar red\nproperty uchar green\nproperty uchar blue\n"
       << "property float radiosity_r\nproperty float radiosity_g\nproperty float radiosity_b\n"
       << "property float irradiance_r\nproperty float irradiance_g\nproperty float irradiance_b\n"
-      << (uv ? "property float s\nproperty float t\n" : "") << "element face " << m.face_count()
-      << "\n"
+      << group_header << (uv ? "property float s\nproperty float t\n" : "") << "element face "
+      << m.face_count() << "\n"
       << "property list uchar uint vertex_indices\n"
       << "end_header\n";
   for (size_t v = 0; v < m.position().size(); ++v) {
@@ -45,6 +58,14 @@ void write_ply(std::ostream& out, const OutputMesh& m, const ToneMap& tm, bool a
       put(out, c[0]), put(out, c[1]), put(out, c[2]);
       put(out, b.x), put(out, b.y), put(out, b.z);
       put(out, h.x), put(out, h.y), put(out, h.z);
+    }
+    for (size_t g = 0; g < groups; ++g) {
+      const Vec3& bg = m.group_radiosity[g][v];
+      if (ascii) {
+        out << fmt::format(" {} {} {}", bg.x, bg.y, bg.z);
+      } else {
+        put(out, bg.x), put(out, bg.y), put(out, bg.z);
+      }
     }
     if (uv) {
       // s, t as OBJ's vt and Blender's PLY reader take them: t up the image.

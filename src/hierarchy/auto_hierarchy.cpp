@@ -186,6 +186,7 @@ struct Placer {
       s.casts_shadows = p.casts_shadows;
       s.receives_shadows = p.receives_shadows;
       s.two_sided = p.two_sided;  // for the summary: its triangles already face both ways
+      s.group = p.group;
       box = p.box;
     } else {
       for (const int32_t c : o.children) {

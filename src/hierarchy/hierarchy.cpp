@@ -36,6 +36,7 @@ struct Builder {
       if (!flags.two_sided) flags.two_sided = content->flags.two_sided;
       if (!flags.has_lights)
         flags.has_lights = content->flags.has_lights, flags.lights = content->flags.lights;
+      if (!flags.group) flags.group = content->flags.group;
     }
     // Copies can nest and multiply: bound the walk and what it makes, not the stack or memory.
     if (depth > limits.max_depth || out.objects.size() + out.lights.size() >= limits.max_objects) {
@@ -45,6 +46,11 @@ struct Builder {
     }
     if (content->light) {  // a light: placed into Hierarchy::lights, no SceneObject
       out.lights.push_back(placed(*content->light, placement, d));
+      // Without a Group of its own, the light is in its copy's group, else its enclosing
+      // objects'.
+      std::string& group = out.lights.back().group;
+      if (group.empty())
+        group = flags.group.value_or(parent >= 0 ? out.objects[size_t(parent)].group : "");
       return -1;
     }
     int32_t id = static_cast<int32_t>(out.objects.size());
@@ -65,6 +71,7 @@ struct Builder {
       o.receives_shadows = flags.receives_shadows.value_or(up ? up->receives_shadows : true);
       o.two_sided = flags.two_sided.value_or(up ? up->two_sided : false);
       o.influence = flags.has_lights ? id : (up ? up->influence : -1);
+      o.group = flags.group.value_or(up ? up->group : std::string());
     }
     flags_of.push_back(std::move(flags));
     const bool identity = placement == glm::dmat4(1.0);

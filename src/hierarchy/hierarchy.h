@@ -55,6 +55,7 @@ struct SceneObject {
   // A Pure's second face of each triangle (ObjectFlags::two_sided): its triangles' second half
   // are the first half's, turned over.
   bool two_sided = false;
+  std::string group;  // light group of its emission (ObjectFlags::group); "": the default group
   int32_t influence = -1;          // the object whose Lights list applies here; -1: lights all
   std::vector<TriangleRange> lit;  // with a Lights list: what it lights, sorted and merged
 };

@@ -14,6 +14,12 @@ void check_scene_input(const SceneInput& in) {
                 "description places its own floor and lights: leave --stage out (rad convert "
                 "MODEL staged.des --stage writes a staged model as a description to start from)");
   }
+  if (!in.model.light_groups.empty()) {
+    throw Error(SourceLoc{in.path},
+                "--light-group names the materials and lights of a model (.obj, .ply, .gltf, "
+                ".glb); in a description, give the object or light a Group flag instead "
+                "(Group \"kitchen\")");
+  }
   if (in.model.emit.empty()) return;
   throw Error(SourceLoc{in.path},
               "--emit names the materials of a model (.obj, .ply, .gltf, .glb); in a "

@@ -233,11 +233,11 @@ StopReason solve_job(SolverState& state, const PreparedSolve& prepared, const Ru
 // The mesh, the images and the statistics (last: rad batch takes a stats file with this job's
 // fingerprint to mean every output is there), all or none. Sets times.write and times.total.
 void write_job_outputs(const RunOptions& run, const SceneJob& job, const SolverState& state,
-                       const VisibilityBackend& vis, StopReason stop, uint64_t job_id,
-                       const std::vector<RankReport>& reports, Clock::time_point start,
-                       RunTimes& times, const Say& say) {
+                       const LightGroupSolution& groups, const VisibilityBackend& vis,
+                       StopReason stop, uint64_t job_id, const std::vector<RankReport>& reports,
+                       Clock::time_point start, RunTimes& times, const Say& say) {
   const auto t = Clock::now();
-  const OutputMesh mesh = make_output_mesh(state, job.outputs.ambient);
+  const OutputMesh mesh = make_output_mesh(state, job.outputs.ambient, &groups);
   StagedFiles files;
   const SolvedScene solved{state, vis, run.quiet, &times.render};
   const std::optional<Camera> camera =
@@ -250,7 +250,7 @@ void write_job_outputs(const RunOptions& run, const SceneJob& job, const SolverS
     files.write(job.stats_json, [&](const std::string& path) {
       write_stats_json(path, run, job, state, stop, times,
                        measure_seams(mesh, state.solution.hierarchy->triangles), camera, job_id,
-                       reports);
+                       reports, &groups);
     });
   }
   files.commit();
@@ -320,8 +320,19 @@ SceneJobResult run_scene_job(const RunOptions& run, const SceneJob& asked, Ranks
   progress.finish(fmt::format("{} after {} shots", to_string(stop), state.shots.count));
   say_why_stopped(stop, memory_limit, job, say);
 
-  write_job_outputs(run, job, state, prepared.visibility(), stop, job_id, reports, start, times,
-                    say);
+  // Light groups: each solved on the mesh the whole solve made, by rank 0 alone under MPI.
+  // An interrupt (sticky) ends every group's solve at once: the outputs are written as they are.
+  const size_t group_count = light_group_names(hierarchy).size();
+  if (group_count > 1) say(fmt::format("Solving the {} light groups one by one...", group_count));
+  t = Clock::now();
+  const LightGroupSolution groups =
+      solve_light_groups(state, prepared.visibility(), []() -> std::optional<StopReason> {
+        if (interrupt_signal()) return StopReason::Interrupted;
+        return std::nullopt;
+      });
+  times.groups = since(t);
+  write_job_outputs(run, job, state, groups, prepared.visibility(), stop, job_id, reports, start,
+                    times, say);
   if (!quiet) std::fputs(format_statistics(state, times.total).c_str(), stdout);
   // A scene lit by lights has its light in lux: what a lighting designer looks at first.
   if (!quiet && !state.solution.hierarchy->lights.empty())

@@ -50,6 +50,9 @@ struct ObjectFlags {
   std::optional<bool> two_sided;         // true: each triangle also faces the other way
   bool has_lights = false;               // an influence list was given: it lights only
   std::vector<NamedObject> lights;       // itself and these objects (with all below them)
+  // The light group of what emits in and below the object (its Pures' emission and its
+  // Lights without a Group of their own): one solution per group (solver/light_groups.h).
+  std::optional<std::string> group;
 };
 
 /// One placement step as written: Translate <v>, Rotate <axis> degrees, or Scale <v> (a

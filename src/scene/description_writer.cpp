@@ -98,6 +98,7 @@ void write_description(const SceneDescription& scene, std::ostream& out) {
       for (const NamedObject& n : f.lights) out << ' ' << quoted(n.name);
       out << " }";
     }
+    if (f.group) out << " Group " << quoted(*f.group);
     if (o.copy_of >= 0) {
       out << "\n";
       return;

@@ -25,6 +25,14 @@ EmitRule parse_emit_rule(const std::string& text) {
   return r;
 }
 
+GroupRule parse_group_rule(const std::string& text) {
+  const size_t eq = text.rfind('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size()) {
+    throw Error("--light-group expects PATTERN=NAME (e.g. 'Lamp*=kitchen'), got '" + text + "'");
+  }
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
 SceneDescription model_to_scene(Model m, const ModelOptions& o) {
   std::vector<Material> materials;
   std::vector<size_t> rule_uses(o.emit.size(), 0);
@@ -56,6 +64,28 @@ SceneDescription model_to_scene(Model m, const ModelOptions& o) {
     }
     return all;
   };
+  // Light groups: per material and per light, the last rule matching its name.
+  std::vector<size_t> group_uses(o.light_groups.size(), 0);
+  auto group_of = [&](const std::string& name) -> std::optional<std::string> {
+    std::optional<std::string> g;
+    for (size_t r = 0; r < o.light_groups.size(); ++r) {
+      if (fnmatch(o.light_groups[r].pattern.c_str(), name.c_str(), 0) != 0) continue;
+      g = o.light_groups[r].group;
+      ++group_uses[r];
+    }
+    return g;
+  };
+  std::vector<std::optional<std::string>> material_group;
+  for (const ModelMaterial& mm : m.materials) material_group.push_back(group_of(mm.name));
+  for (Light& l : m.lights) {
+    if (auto g = group_of(l.name)) l.group = *g;
+  }
+  for (size_t r = 0; r < o.light_groups.size(); ++r) {
+    if (group_uses[r] == 0) {
+      throw Error(SourceLoc{m.path}, "--light-group '" + o.light_groups[r].pattern +
+                                         "' matches no material (" + names() + ") and no light");
+    }
+  }
   for (size_t r = 0; r < o.emit.size(); ++r) {
     if (rule_uses[r] == 0) {
       throw Error(SourceLoc{m.path},
@@ -102,6 +132,7 @@ SceneDescription model_to_scene(Model m, const ModelOptions& o) {
         p.emissive_texture = m.materials[k].emissive_texture;
         p.cutout = m.materials[k].cutout;
         if (m.materials[k].two_sided) p.flags.two_sided = true;
+        p.flags.group = material_group[k];
         emits |= max_component(p.material.emission) > 0.0f;
         d.objects[size_t(composite)].children.push_back(pure_of[k]);
         d.objects.push_back(std::move(p));

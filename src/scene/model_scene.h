@@ -22,8 +22,19 @@ struct EmitRule {
 /// "Lamp*=12" -> {"Lamp*", 12}. Throws rad::Error for anything else.
 EmitRule parse_emit_rule(const std::string& text);
 
+/// --light-group PATTERN=NAME: materials and lights whose name matches the shell pattern are in
+/// light group NAME (ObjectFlags::group, Light::group); the last matching rule wins.
+struct GroupRule {
+  std::string pattern;
+  std::string group;
+};
+
+/// "Lamp*=kitchen" -> {"Lamp*", "kitchen"}. Throws rad::Error for anything else.
+GroupRule parse_group_rule(const std::string& text);
+
 struct ModelOptions {
   std::vector<EmitRule> emit;
+  std::vector<GroupRule> light_groups;
   /// A solve needs light; rad convert does not, and takes a model with no emitter as it is.
   bool require_emission = true;
   /// With !require_emission: say in a warning that nothing emits and how to light it (rad

@@ -213,6 +213,10 @@ class Parser {
     d.copy_of = copy_of;
     const bool model = !model_file.text.empty();
     d.flags = parse_flags(d.transforms, /*body=*/copy_of < 0 && !model);
+    if (light && d.flags.group) {
+      throw Error(kind.loc,
+                  "a Light's group goes inside its braces: Light { Type ... Group \"name\" }");
+    }
     if (light && (d.flags.casts_shadows || d.flags.receives_shadows || d.flags.two_sided ||
                   d.flags.has_lights)) {
       throw Error(kind.loc,
@@ -279,7 +283,7 @@ class Parser {
 
   // Flags ::= Flag Flags | (nothing)
   // Flag  ::= "CastsShadows" YesNo | "ReceivesShadows" YesNo | "TwoSided" YesNo
-  //         | "Lights" "{" Strings "}"
+  //         | "Lights" "{" Strings "}" | "Group" String
   //         | "Translate" Vector | "Rotate" Vector Real | "Scale" (Real | Vector)
   // Transforms are kept in the order written. With `body`, a '{' must follow.
   ObjectFlags parse_flags(std::vector<Transform>& transforms, bool body) {
@@ -301,6 +305,10 @@ class Parser {
           fail_expected(value, "'Yes' or 'No' after '" + flag.text + "'", true);
         }
         slot = value.text == "Yes";
+      } else if (is_word(t, "Group")) {
+        const Token flag = tokens_.next();
+        if (f.group) throw Error(flag.loc, "'Group' given twice for one object");
+        f.group = expect_string("the light group's name (a quoted string)");
       } else if (is_word(t, "Lights")) {
         const Token flag = tokens_.next();
         if (f.has_lights) throw Error(flag.loc, "'Lights' given twice for one object");
@@ -317,7 +325,9 @@ class Parser {
       } else {
         if (body && !is_symbol(t, '{')) {
           fail_expected(
-              t, "a transform, 'CastsShadows', 'ReceivesShadows', 'TwoSided', 'Lights' or '{'",
+              t,
+              "a transform, 'CastsShadows', 'ReceivesShadows', 'TwoSided', 'Lights', 'Group' "
+              "or '{'",
               true);
         }
         return f;

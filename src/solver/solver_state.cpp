@@ -46,6 +46,43 @@ float scene_size(const Hierarchy& h) {
   return float(2.0 * r);
 }
 
+EnergyBalance start_from_emission(Solution& sol) {
+  const Hierarchy& h = *sol.hierarchy;
+  EnergyBalance energy;
+  energy.unshot_energy.assign(h.triangles.size(), UnshotEnergy{});
+  double total_area = 0.0;
+  sol.vertex_states.resize(h.triangles.size());
+  for (size_t t = 0; t < h.triangles.size(); ++t) {
+    const Vec3 e = sol.material_of(t).emission;
+    sol.vertex_states[t].assign(sol.mesh.polygons[t].vertex_count(), VertexState{.unshot = e});
+    if (!sol.texture_factors[t].empty()) {
+      for (uint32_t v = 0; v < sol.vertex_states[t].size(); ++v)
+        sol.vertex_states[t][v].unshot = sol.emission(t, v);
+    }
+    energy.unshot_energy[t] = polygon_unshot_energy(sol, t);
+    energy.emitted_energy += energy.unshot_energy[t].sum;
+    total_area += h.triangles.area[t];
+  }
+  // The lights shoot first (solver.cpp), their power counted with the surfaces' emission. What
+  // a light shoots is in units of the scene's light (light_source.h): its setting over the
+  // scene's intensity.
+  for (size_t i = 0; i < h.lights.size(); ++i) {
+    const Light& l = h.lights[i];
+    const LightSetting& now = sol.lights[i];
+    energy.light_unshot.push_back(
+        now.intensity == l.intensity
+            ? now.colour
+            : (l.intensity > 0.0f ? now.colour * (now.intensity / l.intensity) : Vec3(0.0f)));
+    energy.light_power.push_back(light_power(l, h.bounds));
+  }
+  energy.emitted_energy += energy.light_unshot_energy();
+  energy.reference_energy = energy.emitted_energy;
+  energy.total_area = total_area;
+  energy.radiosity_scale = total_area > 0.0 ? float(energy.emitted_energy / total_area) : 1.0f;
+  if (!(energy.radiosity_scale > 0.0f)) energy.radiosity_scale = 1.0f;
+  return energy;
+}
+
 SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) {
   SolverState s;
   s.options = options;
@@ -79,9 +116,6 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   sol.materials.reserve(h.objects.size());
   for (const SceneObject& o : h.objects) sol.materials.push_back(o.material);
   for (const Light& l : h.lights) sol.lights.push_back({l.colour, l.intensity});
-  energy.unshot_energy.assign(h.triangles.size(), UnshotEnergy{});
-  double total_area = 0.0;
-  sol.vertex_states.resize(h.triangles.size());
   sol.texture_factors.resize(h.triangles.size());
   tbb::parallel_for(size_t(0), h.triangles.size(), [&](size_t t) {
     if (is_textured(h.triangles, t, sol.object_of(t))) {
@@ -89,27 +123,7 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
           initial_texture_factors(h.triangles, t, sol.object_of(t), sol.mesh.polygons[t]);
     }
   });
-  for (size_t t = 0; t < h.triangles.size(); ++t) {
-    const Vec3 e = sol.material_of(t).emission;
-    sol.vertex_states[t].assign(sol.mesh.polygons[t].vertex_count(), VertexState{.unshot = e});
-    if (!sol.texture_factors[t].empty()) {
-      for (uint32_t v = 0; v < sol.vertex_states[t].size(); ++v)
-        sol.vertex_states[t][v].unshot = sol.emission(t, v);
-    }
-    energy.unshot_energy[t] = polygon_unshot_energy(sol, t);
-    energy.emitted_energy += energy.unshot_energy[t].sum;
-    total_area += h.triangles.area[t];
-  }
-  // The lights shoot first (solver.cpp), their power counted with the surfaces' emission.
-  for (const Light& l : h.lights) {
-    energy.light_unshot.push_back(l.colour);
-    energy.light_power.push_back(light_power(l, h.bounds));
-  }
-  energy.emitted_energy += energy.light_unshot_energy();
-  energy.reference_energy = energy.emitted_energy;
-  energy.total_area = total_area;
-  energy.radiosity_scale = total_area > 0.0 ? float(energy.emitted_energy / total_area) : 1.0f;
-  if (!(energy.radiosity_scale > 0.0f)) energy.radiosity_scale = 1.0f;
+  energy = start_from_emission(sol);
   scene.shadow_offset = shadow_offset(h.bounds);
   assert(options.sample_grid >= 1 && options.max_sample_grid <= 64);
   const int max_m = std::max(options.sample_grid, options.max_sample_grid);

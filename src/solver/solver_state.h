@@ -36,6 +36,12 @@ struct SolverState {
 /// own, and refined one level less); for an axis-aligned box the two are equal.
 float scene_size(const Hierarchy& h);
 
+/// Every vertex of `sol`'s mesh back to before the first shot: H = 0 and unshot radiosity = its
+/// emission E (materials as in sol.materials, texture factors included), each light's whole
+/// light (as in sol.lights) still to shoot. Returns the energy bookkeeping of that start
+/// (without the cluster totals: update_unshot_totals).
+EnergyBalance start_from_emission(Solution& sol);
+
 /// The state before the first shot: the unsplit mesh, emitters' unshot radiosity = emission.
 /// Keeps a pointer to `h`, which must outlive the state.
 SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options);

@@ -167,7 +167,12 @@ bool complete_ply(const fs::path& p, size_t* vertices) {
   std::sscanf(data.c_str() + data.find("element vertex"), "element vertex %zu", &v);
   std::sscanf(data.c_str() + data.find("element face"), "element face %zu", &f);
   *vertices = v;
-  return data.size() == end + 11 + v * 39 + f * 13;  // 3+3+3 floats+3 bytes; 1 byte + 3 uints
+  // 3+3+3 floats + 3 bytes, a float per light group channel; 1 byte + 3 uints per face.
+  size_t group_floats = 0;
+  for (size_t at = data.find("property float group"); at < end;
+       at = data.find("property float group", at + 1))
+    ++group_floats;
+  return data.size() == end + 11 + v * (39 + 4 * group_floats) + f * 13;
 }
 
 TEST(CommandLine, ShardIsIOfNOrTheSlurmArrayTask) {

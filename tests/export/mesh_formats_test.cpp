@@ -327,6 +327,60 @@ TEST(MeshFormats, KhronosValidatorReportsNoErrors) {
   EXPECT_NE(r.report.find("v.glb: 0 errors"), std::string::npos) << r.report;
 }
 
+// Light groups: each group's radiosity per vertex, as PLY properties named in the header's
+// comments and as glTF attributes named in the mesh's extras.
+TEST(MeshFormats, LightGroupsAreWrittenAsPlyPropertiesAndGltfAttributes) {
+  const testing::MeshParts parts = sample_mesh();
+  OutputMesh m = parts.view();
+  m.group_names = {"panel", "desk lamp"};
+  for (const float share : {0.25f, 0.75f}) {
+    std::vector<Vec3> b;
+    for (const Vec3& x : parts.radiosity) b.push_back(x * share);
+    m.group_radiosity.push_back(b);
+  }
+  MeshFileOptions o;
+  o.tone = kTone;
+  o.ascii = true;
+  const std::string ply = (temp_dir() / "groups.ply").string();
+  write_mesh_file(ply, m, o);
+  std::ifstream in(ply);
+  std::string line, header;
+  while (std::getline(in, line) && line != "end_header") header += line + "\n";
+  EXPECT_NE(header.find("comment light group 0 \"panel\""), std::string::npos) << header;
+  EXPECT_NE(header.find("comment light group 1 \"desk lamp\""), std::string::npos) << header;
+  EXPECT_NE(header.find("property float irradiance_b\nproperty float group0_r\nproperty float "
+                        "group0_g\nproperty float group0_b\nproperty float group1_r\n"),
+            std::string::npos)
+      << header;
+  for (size_t v = 0; v < m.position().size(); ++v) {
+    ASSERT_TRUE(std::getline(in, line));
+    std::istringstream l(line);
+    std::vector<float> x;
+    for (float f; l >> f;) x.push_back(f);
+    ASSERT_EQ(x.size(), 18u) << line;
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_FLOAT_EQ(x[12 + size_t(k)], m.group_radiosity[0][v][k]);
+      EXPECT_FLOAT_EQ(x[15 + size_t(k)], m.group_radiosity[1][v][k]);
+    }
+  }
+
+  const std::string gltf = (temp_dir() / "groups.gltf").string();
+  write_mesh_file(gltf, m, o);
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model g;
+  std::string err, warn;
+  ASSERT_TRUE(loader.LoadASCIIFromFile(&g, &err, &warn, gltf)) << err;
+  ASSERT_EQ(g.meshes.size(), 1u);
+  const tinygltf::Primitive& p = g.meshes[0].primitives[0];
+  EXPECT_EQ(read_vec3(g, p.attributes.at("_RADIOSITY_GROUP_0")), m.group_radiosity[0]);
+  EXPECT_EQ(read_vec3(g, p.attributes.at("_RADIOSITY_GROUP_1")), m.group_radiosity[1]);
+  const tinygltf::Value& names = g.meshes[0].extras.Get("light_groups");
+  ASSERT_TRUE(names.IsArray());
+  ASSERT_EQ(names.ArrayLen(), 2u);
+  EXPECT_EQ(names.Get(0).Get<std::string>(), "panel");
+  EXPECT_EQ(names.Get(1).Get<std::string>(), "desk lamp");
+}
+
 TEST(MeshFormats, ExtensionChoosesTheFormatAndUnknownOnesAreRejected) {
   for (const char* ok : {"a.ply", "a.PLY", "b.off", "c.obj", "d.gltf", "e.GLB", "f.gfo"}) {
     EXPECT_NO_THROW(check_mesh_extension(ok)) << ok;

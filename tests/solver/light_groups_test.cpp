@@ -1,0 +1,122 @@
+// Light groups: which emitters form a group, and each group's light solved alone adding up to the
+// whole solve's (radiosity is linear in the emission).
+#include "solver/light_groups.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "hierarchy/hierarchy.h"
+#include "scene/parser.h"
+#include "scene_builder.h"
+#include "visibility/backend.h"
+
+namespace rad {
+namespace {
+
+// Groups given by an object's flag reach its Pures and its Lights without a Group of their own;
+// a light's own Group wins; a Copy's flag wins over its original's.
+const char* kGrouped = R"("grouped"
+Object "floor" Pure { Reflectivity 0.5 Color <1 1 1> Emission 0
+  Data { <-9 0 -9> <-9 0 9> <9 0 9> } }
+Object "kitchen" Assembly Group "kitchen" {
+  Object "panel" Pure { Reflectivity 0.5 Color <1 1 1> Emission 4
+    Data { <0 2 0> <1 2 0> <0 2 1> } }
+  Object "bulb" Light { Type Point Position <0 1 0> Intensity 10 }
+  Object "night light" Light { Type Point Position <0 1 1> Intensity 1 Group "night" }
+}
+Object "porch" Copy "kitchen" Translate <5 0 0> Group "porch"
+Object "lamp" Pure { Reflectivity 0.5 Color <1 1 1> Emission 2
+  Data { <0 3 0> <1 3 0> <0 3 1> } }
+Object "off" Light { Type Point Position <0 1 0> Intensity 0 Group "off" }
+)";
+
+TEST(LightGroups, AnObjectsGroupReachesWhatEmitsBelowItUnlessALightNamesItsOwn) {
+  const Hierarchy h = build_hierarchy(parse_scene_text(kGrouped, "grouped.des"));
+  // Emitting objects first (kitchen's panel, porch's panel, the lamp), then lights; a group
+  // with nothing that emits ("off", an unlit light's) is none.
+  EXPECT_EQ(light_group_names(h), (std::vector<std::string>{"kitchen", "porch", "", "night"}));
+  ASSERT_EQ(h.lights.size(), 5u);
+  EXPECT_EQ(h.lights[0].group, "kitchen");  // bulb: its Assembly's
+  EXPECT_EQ(h.lights[1].group, "night");    // its own
+  EXPECT_EQ(h.lights[2].group, "porch");    // the copy's bulb: the copy's flag
+  EXPECT_EQ(h.lights[3].group, "night");
+}
+
+TEST(LightGroups, AGroupFlagOnALightOrTwiceOnAnObjectIsRefusedWithItsPlace) {
+  try {
+    parse_scene_text(
+        "\"s\"\nObject \"l\" Light Group \"g\" { Type Point Position <0 1 0> "
+        "Intensity 1 }\n",
+        "s.des");
+    FAIL() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("s.des:2:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("inside its braces"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(parse_scene_text("\"s\"\nObject \"a\" Assembly Group \"g\" Group \"h\" {\n"
+                                "Object \"p\" Pure { Reflectivity 0.5 Color <1 1 1> Emission 1 "
+                                "Data { <0 0 0> <1 0 0> <0 1 0> } } }\n",
+                                "s.des"),
+               Error);
+}
+
+// The Cornell box lit by its ceiling panel (group "panel") and a bluish point light (group
+// "lamp"), scenes/cornell_box_groups.des: the two groups' radiosities, each solved alone on the
+// whole solve's mesh, add up to the whole solve's at every vertex, within 0.1% of the mean. The
+// roulette is off: its noise differs between solves and is not what this checks.
+TEST(LightGroups, TheGroupsAddUpToTheWholeSolve) {
+  const Hierarchy h =
+      build_hierarchy(parse_scene_file(RAD_SOURCE_DIR "/scenes/cornell_box_groups.des"));
+  size_t panel = h.objects.size();
+  for (size_t i = 0; i < h.objects.size(); ++i) {
+    if (h.objects[i].group == "panel") panel = i;
+  }
+  ASSERT_LT(panel, h.objects.size());
+  ASSERT_EQ(h.lights.size(), 1u);
+  EXPECT_EQ(h.lights[0].group, "lamp");
+  ASSERT_EQ(light_group_names(h), (std::vector<std::string>{"panel", "lamp"}));
+
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  SolverOptions o;
+  o.roulette = 0.0f;
+  SolverState s = make_solver_state(h, o);
+  solve(s, *vis);
+  const LightGroupSolution groups = solve_light_groups(s, *vis);
+  ASSERT_EQ(groups.names.size(), 2u);
+
+  double diff = 0.0, total = 0.0;
+  size_t panel_vertices = 0;
+  for (size_t p = 0; p < s.solution.vertex_states.size(); ++p) {
+    const bool on_panel = size_t(h.triangles.object[p]) == panel;
+    for (uint32_t v = 0; v < s.solution.vertex_states[p].size(); ++v) {
+      const Vec3 all = s.solution.radiosity(p, v);
+      const Vec3 a = groups.at(0, p, v), b = groups.at(1, p, v);
+      diff += double(mean_component(glm::abs(all - a - b)));
+      total += double(mean_component(all));
+      if (on_panel) {  // the panel emits in its own group only
+        ++panel_vertices;
+        const float e = mean_component(s.solution.emission(p, v));
+        EXPECT_GE(mean_component(a), 0.999f * e);
+        EXPECT_LT(mean_component(b), mean_component(all) - e + 0.01f * mean_component(all));
+      }
+    }
+  }
+  EXPECT_LT(diff / total, 1e-3) << "mean |whole - sum of groups| / mean whole";
+  EXPECT_GT(panel_vertices, 0u);
+  EXPECT_EQ(groups.shots.size(), 2u);
+  EXPECT_LE(groups.unshot_fraction[0], o.converge);
+  EXPECT_LE(groups.unshot_fraction[1], o.converge);
+}
+
+TEST(LightGroups, ASceneNamingNoGroupHasNone) {
+  const Hierarchy h = build_hierarchy(parse_scene_file(RAD_SOURCE_DIR "/scenes/cornell_box.des"));
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  const SolverState s = testing::solve_shots(h, *vis, SolverOptions{}, 3);
+  EXPECT_EQ(light_group_names(h), (std::vector<std::string>{""}));
+  EXPECT_TRUE(solve_light_groups(s, *vis).names.empty());
+}
+
+}  // namespace
+}  // namespace rad
