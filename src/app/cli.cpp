@@ -266,6 +266,9 @@ struct Showing {
                      "(radiosity units, as the scene's), or 'transparent' (an alpha channel in "
                      ".png and .exr)")
           ->capture_default_str();
+      app.add_flag("--group-images", o.group_images,
+                   "With two light groups or more: beside each image, one per group of its light "
+                   "alone (box.png: box.GROUP.png), same camera and exposure");
     }
     app.add_option("--false-colour", false_colour,
                    "lux: images show the illuminance (the luminance of the light arriving) in "

@@ -48,6 +48,9 @@ struct OutputOptions {
   // Final gather: what pixels show where nothing is seen, or transparency (an alpha channel).
   Vec3 background{0.0f};
   bool transparent = false;
+  // With two light groups or more: beside each image, one per group of that group's light
+  // alone (group_image_paths), through the same camera and exposure.
+  bool group_images = false;
   bool ascii = false;   // PLY as text
   bool ambient = true;  // display colours include Cohen's ambient term
   ToneCurve tonemap = ToneCurve::Clamp;

@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "core/atomic_file.h"
+#include "core/error.h"
 #include "core/fingerprint.h"
 #include "core/interrupt.h"
 #include "core/memory.h"
@@ -230,6 +231,32 @@ StopReason solve_job(SolverState& state, const PreparedSolve& prepared, const Ru
       });
 }
 
+// Each light group's images beside the whole solve's (group_image_paths), through its camera
+// and with its exposure, so that the groups' linear images add up to the whole's. Adds the
+// groups' final gathers to times.render.
+void write_group_images(const OutputOptions& whole, const SolverState& state,
+                        const LightGroupSolution& groups, const VisibilityBackend& vis,
+                        const ToneMap& tone, const Camera& camera, bool quiet, RunTimes& times,
+                        const Say& say, StagedFiles& files) {
+  std::vector<std::vector<std::string>> paths;
+  for (const std::string& image : whole.images)
+    paths.push_back(group_image_paths(image, groups.names));
+  SolverState view = group_view(state);
+  for (size_t g = 0; g < groups.names.size(); ++g) {
+    show_group(view, groups, g);
+    OutputOptions o = whole;
+    o.mesh.clear();
+    o.camera = camera;
+    o.images.clear();
+    for (const std::vector<std::string>& p : paths) o.images.push_back(p[g]);
+    say(fmt::format("Light group \"{}\" alone:", groups.names[g]));
+    double seconds = 0.0;
+    const SolvedScene solved{view, vis, quiet, &seconds};
+    write_outputs(make_output_mesh(view, o.ambient), o, tone, say, files, &solved);
+    times.render += seconds;
+  }
+}
+
 // The mesh, the images and the statistics (last: rad batch takes a stats file with this job's
 // fingerprint to mean every output is there), all or none. Sets times.write and times.total.
 void write_job_outputs(const RunOptions& run, const SceneJob& job, const SolverState& state,
@@ -240,10 +267,12 @@ void write_job_outputs(const RunOptions& run, const SceneJob& job, const SolverS
   const OutputMesh mesh = make_output_mesh(state, job.outputs.ambient, &groups);
   StagedFiles files;
   const SolvedScene solved{state, vis, run.quiet, &times.render};
-  const std::optional<Camera> camera =
-      write_outputs(mesh, job.outputs,
-                    scene_tone_map(state, mesh.display, job.outputs.tonemap, job.outputs.exposure),
-                    say, files, &solved);
+  const ToneMap tone =
+      scene_tone_map(state, mesh.display, job.outputs.tonemap, job.outputs.exposure);
+  const std::optional<Camera> camera = write_outputs(mesh, job.outputs, tone, say, files, &solved);
+  if (!groups.states.empty())
+    write_group_images(job.outputs, state, groups, vis, tone, *camera, run.quiet, times, say,
+                       files);
   times.write = since(t);
   times.total = since(start);
   if (!job.stats_json.empty()) {
@@ -325,12 +354,20 @@ SceneJobResult run_scene_job(const RunOptions& run, const SceneJob& asked, Ranks
   const size_t group_count = light_group_names(hierarchy).size();
   if (group_count > 1) say(fmt::format("Solving the {} light groups one by one...", group_count));
   t = Clock::now();
-  const LightGroupSolution groups =
-      solve_light_groups(state, prepared.visibility(), []() -> std::optional<StopReason> {
+  const LightGroupSolution groups = solve_light_groups(
+      state, prepared.visibility(),
+      []() -> std::optional<StopReason> {
         if (interrupt_signal()) return StopReason::Interrupted;
         return std::nullopt;
-      });
+      },
+      /*keep_states=*/job.outputs.group_images && !job.outputs.images.empty());
   times.groups = since(t);
+  if (job.outputs.group_images && group_count < 2) {
+    warn(SourceLoc{job.input.path},
+         "--group-images: the scene has no two light groups, so no image more is written; put "
+         "emitters in groups with Group \"name\" (descriptions) or --light-group PATTERN=NAME "
+         "(models)");
+  }
   write_job_outputs(run, job, state, groups, prepared.visibility(), stop, job_id, reports, start,
                     times, say);
   if (!quiet) std::fputs(format_statistics(state, times.total).c_str(), stdout);

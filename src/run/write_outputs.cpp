@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cctype>
+
 #include "core/error.h"
 #include "core/progress.h"
 #include "export/camera.h"
@@ -107,6 +110,29 @@ std::optional<Camera> write_outputs(const OutputMesh& mesh, const OutputOptions&
     files.write(path, [&](const std::string& staged) { write_image_file(staged, image, shown); });
   }
   return camera;
+}
+
+std::vector<std::string> group_image_paths(const std::string& image,
+                                           const std::vector<std::string>& names) {
+  const size_t slash = image.find_last_of('/');
+  const size_t dot = image.find_last_of('.');
+  const bool has_extension =
+      dot != std::string::npos && (slash == std::string::npos || dot > slash);
+  const std::string stem = has_extension ? image.substr(0, dot) : image;
+  const std::string extension = has_extension ? image.substr(dot) : "";
+  std::vector<std::string> tags, paths;
+  for (size_t g = 0; g < names.size(); ++g) {
+    std::string tag = names[g];
+    for (char& c : tag) {
+      const bool kept = std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_';
+      if (!kept) c = '_';
+    }
+    if (tag.empty() || std::find(tags.begin(), tags.end(), tag) != tags.end())
+      tag = fmt::format("group{}", g);
+    tags.push_back(tag);
+    paths.push_back(stem + "." + tag + extension);
+  }
+  return paths;
 }
 
 }  // namespace rad

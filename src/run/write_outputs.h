@@ -4,6 +4,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "export/camera.h"
 #include "export/output_mesh.h"
@@ -38,5 +39,12 @@ std::optional<Camera> write_outputs(const OutputMesh& mesh, const OutputOptions&
                                     const ToneMap& tone,
                                     const std::function<void(const std::string&)>& say,
                                     StagedFiles& files, const SolvedScene* solved = nullptr);
+
+/// The images of light groups `names` beside `image`, one per group: its stem, a dot, the
+/// group's name with every character but letters, digits, '-' and '_' made '_', and its
+/// extension (box.png, "Desk lamp": box.Desk_lamp.png); "group" and the group's index where
+/// that leaves no name or the name of a group before it ("": box.group0.png).
+std::vector<std::string> group_image_paths(const std::string& image,
+                                           const std::vector<std::string>& names);
 
 }  // namespace rad

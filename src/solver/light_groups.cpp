@@ -1,6 +1,7 @@
 #include "solver/light_groups.h"
 
 #include <algorithm>
+#include <cassert>
 #include <limits>
 
 #include "solver/energy_balance.h"
@@ -38,7 +39,8 @@ std::vector<Vec3> vertex_radiosity(const Solution& sol, const std::vector<size_t
 }  // namespace
 
 LightGroupSolution solve_light_groups(const SolverState& solved, const VisibilityBackend& vis,
-                                      const std::function<std::optional<StopReason>()>& stop) {
+                                      const std::function<std::optional<StopReason>()>& stop,
+                                      bool keep_states) {
   const Hierarchy& h = *solved.solution.hierarchy;
   LightGroupSolution out;
   out.names = light_group_names(h);
@@ -59,26 +61,17 @@ LightGroupSolution solve_light_groups(const SolverState& solved, const Visibilit
   // One state for every group's solve, made once (the scene caches are the solve's own, read
   // only); each group starts it over from its own emission. One process: under MPI this runs on
   // the rank that gathered the whole solve.
-  SolverState gs;
-  gs.options = solved.options;
+  SolverState gs = group_view(solved);
   // The mesh stays as the whole solve refined it, so every group's vertices are the same.
   gs.options.subdivision_threshold = std::numeric_limits<float>::infinity();
-  gs.scene = solved.scene;
-  gs.solution = all_on;
   gs.solution.lights.resize(h.lights.size());
-  // A state built without its lights' settings (edits.cpp) has the scene's.
-  std::vector<LightSetting> settings = all_on.lights;
-  if (settings.size() != h.lights.size()) {
-    settings.clear();
-    for (const Light& l : h.lights) settings.push_back({l.colour, l.intensity});
-  }
   for (const std::string& group : out.names) {
     for (size_t i = 0; i < h.objects.size(); ++i) {
       gs.solution.materials[i] = all_on.materials[i];
       if (h.objects[i].group != group) gs.solution.materials[i].emission = Vec3(0.0f);
     }
     for (size_t i = 0; i < h.lights.size(); ++i) {
-      gs.solution.lights[i] = settings[i];
+      gs.solution.lights[i] = all_on.light_setting(i);
       if (h.lights[i].group != group) gs.solution.lights[i].intensity = 0.0f;
     }
     gs.energy = start_from_emission(gs.solution);
@@ -91,8 +84,30 @@ LightGroupSolution solve_light_groups(const SolverState& solved, const Visibilit
     out.radiosity.push_back(vertex_radiosity(gs.solution, out.first_vertex));
     out.shots.push_back(gs.shots.count);
     out.unshot_fraction.push_back(gs.energy.unshot_fraction());
+    if (keep_states) {
+      out.states.push_back(
+          {gs.solution.vertex_states, gs.solution.materials, gs.solution.lights, gs.energy});
+    }
   }
   return out;
+}
+
+SolverState group_view(const SolverState& solved) {
+  SolverState view;
+  view.options = solved.options;
+  view.scene = solved.scene;
+  view.solution = solved.solution;
+  view.energy = solved.energy;
+  return view;
+}
+
+void show_group(SolverState& view, const LightGroupSolution& groups, size_t g) {
+  assert(g < groups.states.size());
+  const LightGroupState& state = groups.states[g];
+  view.solution.vertex_states = state.vertex_states;
+  view.solution.materials = state.materials;
+  view.solution.lights = state.lights;
+  view.energy = state.energy;
 }
 
 }  // namespace rad

@@ -68,6 +68,13 @@ struct Solution {
     const Vec3 e = material_of(p).emission;
     return texture_factors[p].empty() ? e : e * texture_factors[p][v].emission;
   }
+  /// Light i's colour and intensity as edited; the scene's where the solution holds no
+  /// settings (one built by hand rather than by make_solver_state).
+  LightSetting light_setting(size_t i) const {
+    if (lights.size() == hierarchy->lights.size()) return lights[i];
+    const Light& l = hierarchy->lights[i];
+    return {l.colour, l.intensity};
+  }
   /// Radiosity B = E + rho * H of vertex v of polygon p.
   Vec3 radiosity(size_t p, uint32_t v) const {
     return emission(p, v) + reflectance(p, v) * vertex_states[p][v].irradiance;

@@ -19,6 +19,7 @@
 #include "export/camera.h"
 #include "export/false_colour.h"
 #include "export/tonemap.h"
+#include "run/write_outputs.h"
 
 namespace {
 
@@ -976,6 +977,55 @@ TEST(CommandLine, ImagesRenderByFinalGatherOrPreviewOverABackgroundOrTransparent
               " " + (dir / "p.ply").string());
   EXPECT_EQ(r.code, 0) << r.err;
   fs::remove_all(dir);
+}
+
+// --group-images: beside each image, one per light group through the same camera and exposure;
+// in linear images the groups add up to the whole (both sides solved to the same convergence,
+// so within a few tenths of a percent). A scene of one group writes no more images and says so.
+TEST(CommandLine, GroupImagesAddUpToTheWholeImage) {
+  const fs::path dir = fs::temp_directory_path() / ("rad_group_images_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const std::string scene = (kScenes / "cornell_box_groups.des").string();
+  for (const std::string render : {"final", "preview"}) {
+    const fs::path image = dir / (render + ".pfm");
+    // Elements of at least 20 (in a box of 556): the test's time goes to the images.
+    const RadRun r = run_rad(
+        "-q --min-size 20 --size 32x32 --pixel-samples 1 --group-images --render " + render +
+        " --image " + image.string() + " " + scene + " " + (dir / "g.ply").string());
+    ASSERT_EQ(r.code, 0) << r.err;
+    const Pfm whole = read_pfm(image);
+    const Pfm panel = read_pfm(dir / (render + ".panel.pfm"));
+    const Pfm lamp = read_pfm(dir / (render + ".lamp.pfm"));
+    ASSERT_EQ(whole.rgb.size(), 32u * 32u * 3u);
+    ASSERT_EQ(panel.rgb.size(), whole.rgb.size());
+    ASSERT_EQ(lamp.rgb.size(), whole.rgb.size());
+    double diff = 0.0, total = 0.0, panel_sum = 0.0, lamp_sum = 0.0;
+    for (size_t i = 0; i < whole.rgb.size(); ++i) {
+      diff += std::abs(double(whole.rgb[i]) - panel.rgb[i] - lamp.rgb[i]);
+      total += std::abs(double(whole.rgb[i]));
+      panel_sum += panel.rgb[i], lamp_sum += lamp.rgb[i];
+    }
+    EXPECT_LT(diff / total, 5e-3) << render;
+    EXPECT_GT(panel_sum, 0.01 * total) << render;  // each group lights the box
+    EXPECT_GT(lamp_sum, 0.01 * total) << render;
+  }
+  const RadRun one =
+      run_rad("--max-shots 5 --size 16x16 --group-images --image " + (dir / "one.png").string() +
+              " " + (kScenes / "cornell_box.des").string() + " " + (dir / "one.ply").string());
+  ASSERT_EQ(one.code, 0) << one.err;
+  EXPECT_NE(one.err.find("--group-images: the scene has no two light groups"), std::string::npos)
+      << one.err;
+  size_t files = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++files;
+  EXPECT_EQ(files, 2u * 3u + 1u + 2u);  // final, preview: whole, panel, lamp; g.ply; one.*
+  fs::remove_all(dir);
+}
+
+TEST(CommandLine, GroupImagesAreNamedByTheirGroupsOnce) {
+  EXPECT_EQ(rad::group_image_paths("out/box.png", {"panel", "Desk lamp", "", "Desk/lamp"}),
+            (std::vector<std::string>{"out/box.panel.png", "out/box.Desk_lamp.png",
+                                      "out/box.group2.png", "out/box.group3.png"}));
+  EXPECT_EQ(rad::group_image_paths("a.b/box", {"x"}), (std::vector<std::string>{"a.b/box.x"}));
 }
 
 }  // namespace
