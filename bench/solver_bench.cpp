@@ -191,10 +191,14 @@ std::unique_ptr<ShotCase> prepare_shot(SolverState s, const VisibilityBackend& v
   c->before = s;
   c->size_before = state_size(s);
   RecordingBackend recorder(vis);
-  shoot_to_receivers(s, c->src, recorder, c->major);
+  shoot_to_receivers({s.options, s.scene, s.energy, s.shots, s.ownership, s.solution, s.receivers,
+                      s.kept, s.stats},
+                     c->src, recorder, c->major);
   c->received = s.receivers.marked;
   c->after = s;
-  refine_after_shot(s, c->src, vis, c->major, needing_refinement(s, s.receivers.polygons));
+  refine_after_shot(
+      {s.options, s.energy, s.shots, s.solution, s.scene, s.stats}, s.receivers, c->src, vis,
+      c->major, needing_refinement(s.options, s.energy, s.scene, s.solution, s.receivers.polygons));
   c->size_refined = state_size(s);
   for (size_t p = 0; p < c->received.size(); ++p) {
     if (c->received[p]) c->receivers += c->after.solution.mesh.polygons[p].vertex_count();
@@ -270,7 +274,11 @@ void bm_shot(benchmark::State& st, const SceneSpec& spec, bool later, Variant v,
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
   SolverState s = c.before;
   const SolverStats start = s.stats;
-  for (auto _ : st) shoot_to_receivers(s, c.src, vis, c.major);
+  for (auto _ : st) {
+    shoot_to_receivers({s.options, s.scene, s.energy, s.shots, s.ownership, s.solution, s.receivers,
+                        s.kept, s.stats},
+                       c.src, vis, c.major);
+  }
   const double n = double(st.iterations());
   const double rays = double(s.stats.rays.rays - start.rays.rays);
   st.SetItemsProcessed(int64_t(st.iterations()) * int64_t(c.receivers));
@@ -326,8 +334,10 @@ void bm_refine(benchmark::State& st, const SceneSpec& spec, bool later, int thre
   for (auto _ : st) {
     SolverState s = c.after;
     const auto t0 = std::chrono::steady_clock::now();
-    refine_after_shot(s, c.src, vis, c.major,
-                      needing_refinement(s, s.receivers.polygons));  // of c.after's receivers
+    refine_after_shot(  // over c.after's receivers
+        {s.options, s.energy, s.shots, s.solution, s.scene, s.stats}, s.receivers, c.src, vis,
+        c.major,
+        needing_refinement(s.options, s.energy, s.scene, s.solution, s.receivers.polygons));
     const auto t1 = std::chrono::steady_clock::now();
     st.SetIterationTime(std::chrono::duration<double>(t1 - t0).count());
     splits += double(s.stats.subdivisions - c.after.stats.subdivisions);

@@ -212,7 +212,7 @@ void Session::apply_light(int32_t light) {
       c == original_light_controls_[size_t(light)]
           ? LightSetting{l.colour, l.intensity}
           : to_light_setting(c, l.kind, options_.metres_per_unit * options_.metres_per_unit);
-  rad::set_light(state_, light, to.colour, to.intensity);
+  rad::set_light(state_.solution, state_.energy, light, to.colour, to.intensity);
 }
 
 void Session::apply(const Edit& edit) {
@@ -220,7 +220,7 @@ void Session::apply(const Edit& edit) {
     if (const auto* m = std::get_if<MaterialEdit>(&edit)) {
       // The exposure the user was looking at stays, so the edit shows as brighter or darker.
       exposure_locked_ = true;
-      rad::set_material(state_, m->object, to_material(m->controls), vis_);
+      rad::set_material(edit_context(state_), m->object, to_material(m->controls), vis_);
       controls_[size_t(m->object)] = m->controls;
       nothing_to_shoot_ = false;
       notice_ = fmt::format(
@@ -247,7 +247,7 @@ void Session::apply(const Edit& edit) {
                             l->controls.colour.z, l->controls.intensity, intensity_unit(light.kind))
               : fmt::format("light '{}' off", light.name);
     } else if (const auto* s = std::get_if<SubdivideEdit>(&edit)) {
-      const size_t n = force_subdivide(state_, s->polygon, vis_);
+      const size_t n = force_subdivide(edit_context(state_), s->polygon, vis_);
       nothing_to_shoot_ = false;
       const std::string& name = h_.objects[size_t(h_.triangles.object[size_t(s->polygon)])].name;
       notice_ =
@@ -268,7 +268,7 @@ void Session::apply(const Edit& edit) {
       // (emission changes become the initial unshot radiosity, exactly).
       for (size_t o = 0; o < h_.objects.size(); ++o) {
         if (h_.objects[o].kind == ObjectKind::Pure && !(controls_[o] == original_controls_[o])) {
-          rad::set_material(state_, int32_t(o), to_material(controls_[o]), vis_);
+          rad::set_material(edit_context(state_), int32_t(o), to_material(controls_[o]), vis_);
         }
       }
       // The same for the lights: an edit before their first shot changes what they shoot.

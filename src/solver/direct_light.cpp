@@ -102,7 +102,7 @@ Vec3 direct_gain(const SolverState& s, const DirectLight& d, size_t p, const Vec
   for (size_t j = first; j < last; ++j) {
     const size_t i = listed ? d.lit_by[j] : j;
     ShotSource& src = scratch.sources[i];
-    if (!may_receive(s, p, src)) continue;
+    if (!may_receive(*s.solution.hierarchy, s.scene.clusters, p, src)) continue;
     if (src.light < 0 && scratch.set[i] != k) {
       const std::vector<float>& e = d.ends[i * d.variants + k];
       const size_t m = src.end_x.size();

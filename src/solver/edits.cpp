@@ -15,9 +15,11 @@
 
 namespace rad {
 
-void set_material(SolverState& s, int32_t object, const Material& m, const VisibilityBackend& vis) {
-  find_buried_vertices_once(s, vis);  // the vertices an edit makes must know where to gather
-  const Hierarchy& h = *s.solution.hierarchy;
+void set_material(EditContext ctx, int32_t object, const Material& m,
+                  const VisibilityBackend& vis) {
+  // The vertices an edit makes must know where to gather.
+  find_buried_vertices_once(ctx.options, ctx.solution, ctx.scene, ctx.stats, vis);
+  const Hierarchy& h = *ctx.solution.hierarchy;
   if (!is_pure(h, object)) {
     throw Error(fmt::format("object {} is not a Pure", object));
   }
@@ -28,39 +30,41 @@ void set_material(SolverState& s, int32_t object, const Material& m, const Visib
     }
   }
   const SceneObject& o = h.objects[size_t(object)];
-  const Material old = s.solution.materials[size_t(object)];
+  const Material old = ctx.solution.materials[size_t(object)];
   const Vec3 d_e = m.emission - old.emission, d_rho = m.reflectance - old.reflectance;
   // A texture stays: its factors scale the new reflectance.
-  s.solution.materials[size_t(object)] = m;
+  ctx.solution.materials[size_t(object)] = m;
   for (uint32_t t = o.first_triangle; t < o.first_triangle + o.triangle_count; ++t) {
-    std::vector<VertexState>& vs = s.solution.vertex_states[t];
-    const std::vector<TextureFactors>& factors = s.solution.texture_factors[t];
+    std::vector<VertexState>& vs = ctx.solution.vertex_states[t];
+    const std::vector<TextureFactors>& factors = ctx.solution.texture_factors[t];
     for (size_t v = 0; v < vs.size(); ++v) {
       vs[v].unshot += factors.empty() ? d_e + d_rho * vs[v].irradiance
                                       : d_e * factors[v].emission +
                                             d_rho * factors[v].reflectance * vs[v].irradiance;
     }
-    s.energy.emitted_energy += double(h.triangles.area[t]) * double(mean_component(d_e));
-    s.energy.unshot_energy[t] = polygon_unshot_energy(s.solution, t);
+    ctx.energy.emitted_energy += double(h.triangles.area[t]) * double(mean_component(d_e));
+    ctx.energy.unshot_energy[t] = polygon_unshot_energy(ctx.solution, t);
   }
   // Convergence follows the new emission, as a fresh solve's would, unless the edit left next
   // to none: then the light there was is what must be shot back out.
-  if (s.energy.emitted_energy > 1e-6 * s.energy.reference_energy)
-    s.energy.reference_energy = s.energy.emitted_energy;
+  if (ctx.energy.emitted_energy > 1e-6 * ctx.energy.reference_energy)
+    ctx.energy.reference_energy = ctx.energy.emitted_energy;
   // Where the new radiosity varies beyond the limit (a surface that was black was never
   // subdivided), refine now, exactly.
   std::vector<uint32_t> which;
   for (uint32_t t = o.first_triangle; t < o.first_triangle + o.triangle_count; ++t)
     which.push_back(t);
-  refine_after_edit(s, d_rho, vis, which);
+  refine_after_edit({ctx.options, ctx.energy, ctx.shots, ctx.solution, ctx.scene, ctx.stats}, d_rho,
+                    vis, which);
   for (uint32_t t = o.first_triangle; t < o.first_triangle + o.triangle_count; ++t) {
-    s.energy.unshot_energy[t] = polygon_unshot_energy(s.solution, t);
+    ctx.energy.unshot_energy[t] = polygon_unshot_energy(ctx.solution, t);
   }
-  update_unshot_totals(s.energy, s.solution, s.scene.clusters, s.ownership.ranks);
+  update_unshot_totals(ctx.energy, ctx.solution, ctx.scene.clusters, ctx.ownership.ranks);
 }
 
-void set_light(SolverState& s, int32_t light, const Vec3& colour, float intensity) {
-  const std::vector<Light>& lights = s.solution.hierarchy->lights;
+void set_light(Solution& sol, EnergyBalance& energy, int32_t light, const Vec3& colour,
+               float intensity) {
+  const std::vector<Light>& lights = sol.hierarchy->lights;
   if (light < 0 || size_t(light) >= lights.size()) {
     throw Error(fmt::format("light {} does not exist (the scene has {})", light, lights.size()));
   }
@@ -79,7 +83,7 @@ void set_light(SolverState& s, int32_t light, const Vec3& colour, float intensit
                     "turns on can be changed",
                     l.name));
   }
-  std::vector<LightSetting>& settings = s.solution.lights;
+  std::vector<LightSetting>& settings = sol.lights;
   // A state built without its lights' settings starts from the scene's.
   if (settings.size() != lights.size()) {
     settings.clear();
@@ -97,34 +101,34 @@ void set_light(SolverState& s, int32_t light, const Vec3& colour, float intensit
   }
   now = {colour, intensity};
   if (d == Vec3(0.0f)) return;
-  s.energy.light_unshot[size_t(light)] += d;
-  s.energy.emitted_energy += s.energy.light_power[size_t(light)] * double(mean_component(d));
+  energy.light_unshot[size_t(light)] += d;
+  energy.emitted_energy += energy.light_power[size_t(light)] * double(mean_component(d));
   // Convergence follows the new emission, as for a material's (set_material).
-  if (s.energy.emitted_energy > 1e-6 * s.energy.reference_energy)
-    s.energy.reference_energy = s.energy.emitted_energy;
+  if (energy.emitted_energy > 1e-6 * energy.reference_energy)
+    energy.reference_energy = energy.emitted_energy;
 }
 
-size_t force_subdivide(SolverState& s, int32_t polygon, const VisibilityBackend& vis) {
-  find_buried_vertices_once(s, vis);
-  PolygonMesh& m = s.solution.mesh.polygons[size_t(polygon)];
+size_t force_subdivide(EditContext ctx, int32_t polygon, const VisibilityBackend& vis) {
+  find_buried_vertices_once(ctx.options, ctx.solution, ctx.scene, ctx.stats, vis);
+  PolygonMesh& m = ctx.solution.mesh.polygons[size_t(polygon)];
   const uint32_t made_before = uint32_t(m.vertex_count());
-  std::vector<VertexState>& vs = s.solution.vertex_states[size_t(polygon)];
+  std::vector<VertexState>& vs = ctx.solution.vertex_states[size_t(polygon)];
   std::vector<uint32_t> leaves;
   for_each_leaf(m, [&](uint32_t e) { leaves.push_back(e); });
   std::vector<NewMidpoint> created;
   for (uint32_t e : leaves) {
-    if (element_size(m, e) < 2.0f * s.scene.min_size) continue;
+    if (element_size(m, e) < 2.0f * ctx.scene.min_size) continue;
     NewMidpoint c[3];
     const int n = split_element(m, e, c);
     created.insert(created.end(), c, c + n);
-    ++s.stats.subdivisions;
+    ++ctx.stats.subdivisions;
   }
   vs.resize(m.vertex_count());
-  std::vector<TextureFactors>& factors = s.solution.texture_factors[size_t(polygon)];
+  std::vector<TextureFactors>& factors = ctx.solution.texture_factors[size_t(polygon)];
   if (!factors.empty()) {
     factors.resize(m.vertex_count());
-    const Triangles& tris = s.solution.hierarchy->triangles;
-    const SceneObject& object = s.solution.object_of(size_t(polygon));
+    const Triangles& tris = ctx.solution.hierarchy->triangles;
+    const SceneObject& object = ctx.solution.object_of(size_t(polygon));
     // Each new vertex stands for the smallest leaf it is a corner of.
     std::vector<float> area(m.vertex_count() - made_before, std::numeric_limits<float>::max());
     for_each_leaf(m, [&](uint32_t e) {
@@ -137,26 +141,27 @@ size_t force_subdivide(SolverState& s, int32_t polygon, const VisibilityBackend&
           texture_factor(tris, size_t(polygon), object, m.positions[v], area[v - made_before]);
     }
   }
-  if (s.scene.buried.found && s.options.shadows) {
-    find_buried_vertices(s.solution.hierarchy->triangles, size_t(polygon), m, made_before, vis,
-                         buried_probe(s.scene), s.scene.buried.moved[size_t(polygon)],
-                         s.stats.rays);
+  if (ctx.scene.buried.found && ctx.options.shadows) {
+    find_buried_vertices(ctx.solution.hierarchy->triangles, size_t(polygon), m, made_before, vis,
+                         buried_probe(ctx.scene), ctx.scene.buried.moved[size_t(polygon)],
+                         ctx.stats.rays);
   }
-  const GatherSettings settings = gather_settings(s);
-  parallel_gather(created.size(), 1, s.stats, [&](size_t begin, size_t end, GatherScratch& sc) {
+  const GatherSettings settings = gather_settings(ctx.options, ctx.scene, ctx.energy);
+  parallel_gather(created.size(), 1, ctx.stats, [&](size_t begin, size_t end, GatherScratch& sc) {
     for (size_t i = begin; i != end; ++i) {
       const NewMidpoint& c = created[i];
       VertexState& mid = vs[c.vertex];
-      const Vec3 at = s.scene.buried.gather_point(size_t(polygon), c.vertex, m.positions[c.vertex]);
-      mid.irradiance =
-          regather_shots(s, at, uint32_t(polygon), false, vis, settings, sc, &mid.major);
+      const Vec3 at =
+          ctx.scene.buried.gather_point(size_t(polygon), c.vertex, m.positions[c.vertex]);
+      mid.irradiance = regather_shots(*ctx.solution.hierarchy, ctx.scene.clusters, ctx.shots, at,
+                                      uint32_t(polygon), false, vis, settings, sc, &mid.major);
       mid.unshot = (vs[c.a].unshot + vs[c.b].unshot) * 0.5f;  // transient: interpolated
       mid.last_gain = Vec3(0.0f);
     }
   });
-  s.stats.exact_midpoints += created.size();
-  s.energy.unshot_energy[size_t(polygon)] = polygon_unshot_energy(s.solution, size_t(polygon));
-  update_unshot_totals(s.energy, s.solution, s.scene.clusters, s.ownership.ranks);
+  ctx.stats.exact_midpoints += created.size();
+  ctx.energy.unshot_energy[size_t(polygon)] = polygon_unshot_energy(ctx.solution, size_t(polygon));
+  update_unshot_totals(ctx.energy, ctx.solution, ctx.scene.clusters, ctx.ownership.ranks);
   return created.size();
 }
 

@@ -54,36 +54,40 @@ bool needs_split(const Solution& s, const BuriedVertices& buried, size_t p, uint
 
 }  // namespace
 
-bool needs_refinement(const SolverState& s, uint32_t p) {
-  const PolygonMesh& m = s.solution.mesh.polygons[p];
-  const float limit = s.options.subdivision_threshold * s.energy.radiosity_scale;
+bool needs_refinement(const SolverOptions& options, const EnergyBalance& energy,
+                      const SceneCaches& scene, const Solution& sol, uint32_t p) {
+  const PolygonMesh& m = sol.mesh.polygons[p];
+  const float limit = options.subdivision_threshold * energy.radiosity_scale;
   bool any = false;
   std::array<bool, 3> d;
   for_each_leaf(m, [&](uint32_t e) {
-    any = any || needs_split(s.solution, s.scene.buried, p, e, limit, 2.0f * s.scene.min_size, &d);
+    any = any || needs_split(sol, scene.buried, p, e, limit, 2.0f * scene.min_size, &d);
   });
   return any;
 }
 
-std::vector<uint32_t> needing_refinement(const SolverState& s, std::span<const uint32_t> polygons) {
+std::vector<uint32_t> needing_refinement(const SolverOptions& options, const EnergyBalance& energy,
+                                         const SceneCaches& scene, const Solution& sol,
+                                         std::span<const uint32_t> polygons) {
   std::vector<uint8_t> needs(polygons.size());
-  tbb::parallel_for(size_t(0), polygons.size(),
-                    [&](size_t i) { needs[i] = needs_refinement(s, polygons[i]); });
+  tbb::parallel_for(size_t(0), polygons.size(), [&](size_t i) {
+    needs[i] = needs_refinement(options, energy, scene, sol, polygons[i]);
+  });
   std::vector<uint32_t> out;
   for (size_t i = 0; i < polygons.size(); ++i)
     if (needs[i]) out.push_back(polygons[i]);
   return out;
 }
 
-Vec3 regather_shots(const SolverState& s, const Vec3& x, uint32_t polygon, bool major_only,
-                    const VisibilityBackend& vis, const GatherSettings& settings,
-                    GatherScratch& scratch, Vec3* major_part) {
-  const Triangles& tris = s.solution.hierarchy->triangles;
+Vec3 regather_shots(const Hierarchy& h, const Clusters& clusters, const ShotLog& shots,
+                    const Vec3& x, uint32_t polygon, bool major_only, const VisibilityBackend& vis,
+                    const GatherSettings& settings, GatherScratch& scratch, Vec3* major_part) {
+  const Triangles& tris = h.triangles;
   const Vec3 n = tris.normal[polygon], centroid = tris.centroid(polygon);
-  const GatherSettings own = receiver_settings(settings, s, polygon);
+  const GatherSettings own = receiver_settings(settings, h, polygon);
   Vec3 all(0.0f), major(0.0f);
-  for (const ShotSource& k : s.shots.sources) {
-    if ((major_only && !k.major) || !may_receive(s, polygon, k)) continue;
+  for (const ShotSource& k : shots.sources) {
+    if ((major_only && !k.major) || !may_receive(h, clusters, polygon, k)) continue;
     const Vec3 g = gather_from_source(x, n, centroid, k, vis, own, scratch);
     all += g;
     if (k.major) major += g;
@@ -94,25 +98,27 @@ Vec3 regather_shots(const SolverState& s, const Vec3& x, uint32_t polygon, bool 
 
 namespace {
 
-// The splitting both refinements share. `after_shot`: the polygons received the shot just made
-// (they may copy each other's new midpoints, and the options' midpoint rule applies); else every
-// new midpoint is computed. compute(x, scratch) sets a computed new midpoint's state.
+// The splitting both refinements share. `reached`: after a shot, the polygons it reached (they
+// may copy each other's new midpoints, and the options' midpoint rule applies); null after an
+// edit, where every new midpoint is computed. compute(x, scratch) sets a computed new midpoint's
+// state.
 template <typename Compute>
-void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
+void refine(RefineContext ctx, std::span<const uint32_t> polygons, const Receivers* reached,
             const VisibilityBackend& vis, const Compute& compute) {
-  const Triangles& tris = s.solution.hierarchy->triangles;
-  const float limit = s.options.subdivision_threshold * s.energy.radiosity_scale;
-  const float min_split_size = 2.0f * s.scene.min_size;  // children keep sizes >= min_size
+  const bool after_shot = reached != nullptr;
+  const Triangles& tris = ctx.solution.hierarchy->triangles;
+  const float limit = ctx.options.subdivision_threshold * ctx.energy.radiosity_scale;
+  const float min_split_size = 2.0f * ctx.scene.min_size;  // children keep sizes >= min_size
   // Only the given polygons are looked at: a shot of a Lights list reaches a few rooms of a
   // building, and per-polygon work over the whole scene would cost more than the shot.
   const size_t np = polygons.size();
   if (np == 0) return;
-  const bool all_exact = s.options.midpoints == MidpointRule::Exact || !after_shot;
+  const bool all_exact = ctx.options.midpoints == MidpointRule::Exact || !after_shot;
 
   std::vector<std::vector<uint32_t>> check(np), next(np);
   std::vector<std::vector<ExactVertex>> exact(np);
   std::vector<std::vector<EdgeMidpoint>> on_edges(np);
-  SharedVertices& shared = s.scene.shared;
+  SharedVertices& shared = ctx.scene.shared;
   // Copies take the current shot's state from a vertex that has it: only after a shot.
   const bool may_copy = after_shot && all_exact;
   std::vector<uint64_t> splits(np, 0), interpolated(np, 0);
@@ -133,14 +139,14 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
         on_edges[i].clear();
         if (!first_pass && check[i].empty()) continue;
         const uint32_t p = polygons[i];
-        const bool sharing = shares_vertices(s.scene.clusters, p);
-        PolygonMesh& m = s.solution.mesh.polygons[p];
-        std::vector<VertexState>& vs = s.solution.vertex_states[p];
-        std::vector<TextureFactors>& factors = s.solution.texture_factors[p];
+        const bool sharing = shares_vertices(ctx.scene.clusters, p);
+        PolygonMesh& m = ctx.solution.mesh.polygons[p];
+        std::vector<VertexState>& vs = ctx.solution.vertex_states[p];
+        std::vector<TextureFactors>& factors = ctx.solution.texture_factors[p];
         auto consider = [&](uint32_t e) {
           const uint32_t v[3] = {m.elements[e].v[0], m.elements[e].v[1], m.elements[e].v[2]};
           std::array<bool, 3> d;
-          if (!needs_split(s.solution, s.scene.buried, p, e, limit, min_split_size, &d)) return;
+          if (!needs_split(ctx.solution, ctx.scene.buried, p, e, limit, min_split_size, &d)) return;
           const bool d01 = d[0], d12 = d[1], d20 = d[2];
           const bool exact_edge[3][3] = {{false, d01, d20}, {d01, false, d12}, {d20, d12, false}};
           auto index_of = [&](uint32_t x) { return x == v[0] ? 0 : x == v[1] ? 1 : 2; };
@@ -151,7 +157,7 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
             factors.resize(m.vertex_count());
             for (int k = 0; k < n; ++k) {
               factors[created[k].vertex] =
-                  texture_factor(tris, p, s.solution.object_of(p), m.positions[created[k].vertex],
+                  texture_factor(tris, p, ctx.solution.object_of(p), m.positions[created[k].vertex],
                                  m.elements[size_t(m.elements[e].first_child)].area);
             }
           }
@@ -191,9 +197,9 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
           for (uint32_t e : check[i]) consider(e);
         }
         // The new vertices inside solids, before any of them gathers (step 3).
-        if (s.scene.buried.found && s.options.shadows) {
-          find_buried_vertices(tris, p, m, made_before, vis, buried_probe(s.scene),
-                               s.scene.buried.moved[p], probes[i]);
+        if (ctx.scene.buried.found && ctx.options.shadows) {
+          find_buried_vertices(tris, p, m, made_before, vis, buried_probe(ctx.scene),
+                               ctx.scene.buried.moved[p], probes[i]);
         }
       }
     });
@@ -204,13 +210,13 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
     for (size_t i = 0; i < np; ++i) {
       const uint32_t p = polygons[i];
       for (const EdgeMidpoint& e : on_edges[i]) {
-        const PolygonMesh& m = s.solution.mesh.polygons[p];
-        const auto place = shared_place(s.scene.clusters, p, m.positions[e.vertex]);
+        const PolygonMesh& m = ctx.solution.mesh.polygons[p];
+        const auto place = shared_place(ctx.scene.clusters, p, m.positions[e.vertex]);
         const SharedVertices::Gatherer self{p, e.vertex};
         const auto [it, made] = shared.edge_midpoints.try_emplace(*place, self);
         if (made) continue;
         SharedVertices::Gatherer& g = it->second;
-        if (may_copy && e.exact >= 0 && s.receivers.marked[g.polygon]) {
+        if (may_copy && e.exact >= 0 && reached->marked[g.polygon]) {
           ExactVertex& x = exact[i][size_t(e.exact)];
           x.from_polygon = g.polygon, x.from_vertex = g.vertex;
           shared.copies[p].push_back({e.vertex, g.polygon, g.vertex});
@@ -222,7 +228,7 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
     // 3. Compute the current shot exactly at the midpoints of edges beyond the limit.
     flat.clear();
     for (size_t i = 0; i < np; ++i) flat.insert(flat.end(), exact[i].begin(), exact[i].end());
-    parallel_gather(flat.size(), 16, s.stats, [&](size_t begin, size_t end, GatherScratch& sc) {
+    parallel_gather(flat.size(), 16, ctx.stats, [&](size_t begin, size_t end, GatherScratch& sc) {
       for (size_t i = begin; i != end; ++i) {
         const ExactVertex& x = flat[i];
         if (x.from_polygon < 0) compute(x, sc);
@@ -233,12 +239,12 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
     tbb::parallel_for(size_t(0), flat.size(), [&](size_t i) {
       const ExactVertex& x = flat[i];
       if (x.from_polygon < 0) return;
-      const VertexState& from = s.solution.vertex_states[size_t(x.from_polygon)][x.from_vertex];
-      VertexState& to = s.solution.vertex_states[x.polygon][x.vertex];
+      const VertexState& from = ctx.solution.vertex_states[size_t(x.from_polygon)][x.from_vertex];
+      VertexState& to = ctx.solution.vertex_states[x.polygon][x.vertex];
       to.irradiance = from.irradiance, to.unshot = from.unshot;
       to.last_gain = from.last_gain, to.major = from.major;
     });
-    s.stats.exact_midpoints += flat.size();
+    ctx.stats.exact_midpoints += flat.size();
     any = false;
     for (size_t i = 0; i < np; ++i) {
       std::swap(check[i], next[i]);
@@ -246,31 +252,34 @@ void refine(SolverState& s, std::span<const uint32_t> polygons, bool after_shot,
     }
   }
   for (size_t i = 0; i < np; ++i) {
-    s.stats.subdivisions += splits[i];
-    s.stats.interpolated_midpoints += interpolated[i];
-    s.stats.rays += probes[i];
+    ctx.stats.subdivisions += splits[i];
+    ctx.stats.interpolated_midpoints += interpolated[i];
+    ctx.stats.rays += probes[i];
   }
 }
 
 }  // namespace
 
-void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBackend& vis,
-                       bool major, std::span<const uint32_t> polygons) {
-  const Triangles& tris = s.solution.hierarchy->triangles;
-  const GatherSettings settings = gather_settings(s);
-  refine(s, polygons, true, vis, [&](const ExactVertex& x, GatherScratch& sc) {
-    const Vec3 at = s.scene.buried.gather_point(
-        x.polygon, x.vertex, s.solution.mesh.polygons[x.polygon].positions[x.vertex]);
-    std::vector<VertexState>& vs = s.solution.vertex_states[x.polygon];
-    const Vec3 rho = s.solution.reflectance(x.polygon, x.vertex);
-    const Vec3 rho_a = s.solution.reflectance(x.polygon, x.a);
-    const Vec3 rho_b = s.solution.reflectance(x.polygon, x.b);
+void refine_after_shot(RefineContext ctx, const Receivers& reached, const ShotSource& src,
+                       const VisibilityBackend& vis, bool major,
+                       std::span<const uint32_t> polygons) {
+  const Hierarchy& h = *ctx.solution.hierarchy;
+  const Triangles& tris = h.triangles;
+  const GatherSettings settings = gather_settings(ctx.options, ctx.scene, ctx.energy);
+  refine(ctx, polygons, &reached, vis, [&](const ExactVertex& x, GatherScratch& sc) {
+    const Vec3 at = ctx.scene.buried.gather_point(
+        x.polygon, x.vertex, ctx.solution.mesh.polygons[x.polygon].positions[x.vertex]);
+    std::vector<VertexState>& vs = ctx.solution.vertex_states[x.polygon];
+    const Vec3 rho = ctx.solution.reflectance(x.polygon, x.vertex);
+    const Vec3 rho_a = ctx.solution.reflectance(x.polygon, x.a);
+    const Vec3 rho_b = ctx.solution.reflectance(x.polygon, x.b);
     const VertexState &a = vs[x.a], &b = vs[x.b];
     VertexState& mid = vs[x.vertex];
     const Vec3 dh = gather_from_source(at, tris.normal[x.polygon], tris.centroid(x.polygon), src,
-                                       vis, receiver_settings(settings, s, x.polygon), sc);
+                                       vis, receiver_settings(settings, h, x.polygon), sc);
     Vec3 major_h(0.0f);
-    regather_shots(s, at, x.polygon, true, vis, settings, sc, &major_h);
+    regather_shots(h, ctx.scene.clusters, ctx.shots, at, x.polygon, true, vis, settings, sc,
+                   &major_h);
     // Earlier minor shots: interpolated from the edge's ends (design §5).
     Vec3 minor_a = a.irradiance - a.last_gain - a.major;
     Vec3 minor_b = b.irradiance - b.last_gain - b.major;
@@ -281,17 +290,17 @@ void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBa
     const Vec3 earlier_h = (minor_a + minor_b) * 0.5f + major_h;
     // A buried vertex's unshot radiosity holds none of its gains (buried_vertices.h).
     const Vec3 a_u =
-        s.scene.buried.is_moved(x.polygon, x.a) ? a.unshot : a.unshot - rho_a * a.last_gain;
+        ctx.scene.buried.is_moved(x.polygon, x.a) ? a.unshot : a.unshot - rho_a * a.last_gain;
     const Vec3 b_u =
-        s.scene.buried.is_moved(x.polygon, x.b) ? b.unshot : b.unshot - rho_b * b.last_gain;
-    const std::vector<TextureFactors>& factors = s.solution.texture_factors[x.polygon];
+        ctx.scene.buried.is_moved(x.polygon, x.b) ? b.unshot : b.unshot - rho_b * b.last_gain;
+    const std::vector<TextureFactors>& factors = ctx.solution.texture_factors[x.polygon];
     const Vec3 earlier_u =
         factors.empty()
             ? (a_u + b_u) * 0.5f
             : to_reflectance((a_u + b_u) * 0.5f,
                              (factors[x.a].reflectance + factors[x.b].reflectance) * 0.5f,
                              factors[x.vertex].reflectance);
-    const bool buried = s.scene.buried.is_moved(x.polygon, x.vertex);
+    const bool buried = ctx.scene.buried.is_moved(x.polygon, x.vertex);
     mid.irradiance = earlier_h + dh;
     mid.unshot = buried ? earlier_u : earlier_u + rho * dh;
     mid.last_gain = dh;
@@ -299,25 +308,27 @@ void refine_after_shot(SolverState& s, const ShotSource& src, const VisibilityBa
   });
 }
 
-void refine_after_edit(SolverState& s, const Vec3& d_rho, const VisibilityBackend& vis,
+void refine_after_edit(RefineContext ctx, const Vec3& d_rho, const VisibilityBackend& vis,
                        std::span<const uint32_t> polygons) {
-  const GatherSettings settings = gather_settings(s);
-  refine(s, needing_refinement(s, polygons), false, vis,
-         [&](const ExactVertex& x, GatherScratch& sc) {
-           std::vector<VertexState>& vs = s.solution.vertex_states[x.polygon];
+  const Hierarchy& h = *ctx.solution.hierarchy;
+  const GatherSettings settings = gather_settings(ctx.options, ctx.scene, ctx.energy);
+  refine(ctx, needing_refinement(ctx.options, ctx.energy, ctx.scene, ctx.solution, polygons),
+         nullptr, vis, [&](const ExactVertex& x, GatherScratch& sc) {
+           std::vector<VertexState>& vs = ctx.solution.vertex_states[x.polygon];
            const VertexState &a = vs[x.a], &b = vs[x.b];
            VertexState& mid = vs[x.vertex];
            // Every earlier shot gathered again: H exact.
-           const Vec3 at = s.scene.buried.gather_point(
-               x.polygon, x.vertex, s.solution.mesh.polygons[x.polygon].positions[x.vertex]);
-           mid.irradiance = regather_shots(s, at, x.polygon, false, vis, settings, sc, &mid.major);
+           const Vec3 at = ctx.scene.buried.gather_point(
+               x.polygon, x.vertex, ctx.solution.mesh.polygons[x.polygon].positions[x.vertex]);
+           mid.irradiance = regather_shots(h, ctx.scene.clusters, ctx.shots, at, x.polygon, false,
+                                           vis, settings, sc, &mid.major);
            // Unshot: the edit's part d_rho * H exact, the rest interpolated (transient).
-           const std::vector<TextureFactors>& f = s.solution.texture_factors[x.polygon];
+           const std::vector<TextureFactors>& f = ctx.solution.texture_factors[x.polygon];
            auto d_rho_at = [&](uint32_t v) { return f.empty() ? d_rho : d_rho * f[v].reflectance; };
            mid.unshot =
                (a.unshot - d_rho_at(x.a) * a.irradiance + b.unshot - d_rho_at(x.b) * b.irradiance) *
                0.5f;
-           if (!s.scene.buried.is_moved(x.polygon, x.vertex))
+           if (!ctx.scene.buried.is_moved(x.polygon, x.vertex))
              mid.unshot += d_rho_at(x.vertex) * mid.irradiance;
            mid.last_gain = Vec3(0.0f);
          });

@@ -8,40 +8,35 @@
 
 namespace rad {
 
-GatherSettings gather_settings(const SolverState& s) {
+GatherSettings gather_settings(const SolverOptions& options, const SceneCaches& scene,
+                               const EnergyBalance& energy) {
   GatherSettings g;
-  g.method = s.options.method;
-  g.shadows = s.options.shadows;
-  g.cut = s.options.intensity_cut * s.energy.radiosity_scale;
-  g.shadow_offset = s.scene.shadow_offset;
-  g.penumbra_rays = uint32_t(std::max(0, s.options.penumbra_rays));
-  g.penumbra_sample_energy = SolverOptions::kPenumbraSampleShare * s.energy.reference_energy;
+  g.method = options.method;
+  g.shadows = options.shadows;
+  g.cut = options.intensity_cut * energy.radiosity_scale;
+  g.shadow_offset = scene.shadow_offset;
+  g.penumbra_rays = uint32_t(std::max(0, options.penumbra_rays));
+  g.penumbra_sample_energy = SolverOptions::kPenumbraSampleShare * energy.reference_energy;
   return g;
 }
 
-GatherSettings receiver_settings(const GatherSettings& g, const SolverState& s, size_t p) {
-  const Hierarchy& h = *s.solution.hierarchy;
+GatherSettings receiver_settings(const GatherSettings& g, const Hierarchy& h, size_t p) {
   GatherSettings r = g;
   r.shadows = g.shadows && h.objects[size_t(h.triangles.object[p])].receives_shadows;
   return r;
 }
 
-int32_t shooter_influence(const SolverState& s, const ShotSource& src) {
+int32_t shooter_influence(const Hierarchy& h, const Clusters& clusters, const ShotSource& src) {
   if (src.light >= 0) return -1;  // a light lights everything
-  const Hierarchy& h = *s.solution.hierarchy;
-  const uint32_t p = s.scene.clusters.polygons[s.scene.clusters.first[size_t(src.cluster)]];
+  const uint32_t p = clusters.polygons[clusters.first[size_t(src.cluster)]];
   return h.objects[size_t(h.triangles.object[p])].influence;
 }
 
-bool may_receive(const SolverState& s, size_t p, const ShotSource& src) {
-  if (src.light >= 0) {
-    const Triangles& t = s.solution.hierarchy->triangles;
-    return light_reaches(src, t.corners[p], t.normal[p]);
-  }
-  if (src.planar && s.scene.clusters.cluster_of[p] == uint32_t(src.cluster)) return false;
-  if (!influence_reaches(*s.solution.hierarchy, shooter_influence(s, src), uint32_t(p)))
-    return false;
-  const Triangles& t = s.solution.hierarchy->triangles;
+bool may_receive(const Hierarchy& h, const Clusters& clusters, size_t p, const ShotSource& src) {
+  const Triangles& t = h.triangles;
+  if (src.light >= 0) return light_reaches(src, t.corners[p], t.normal[p]);
+  if (src.planar && clusters.cluster_of[p] == uint32_t(src.cluster)) return false;
+  if (!influence_reaches(h, shooter_influence(h, clusters, src), uint32_t(p))) return false;
   const auto& c = t.corners[p];
   bool any_in_front = false;
   for (const Vec3& q : c) any_in_front |= receiver_side(src, q) >= 0;
@@ -50,15 +45,16 @@ bool may_receive(const SolverState& s, size_t p, const ShotSource& src) {
   return highest_above(src.box, c[0], t.normal[p]) > 0.0f;
 }
 
-const Receivers& shoot_to_receivers(SolverState& s, const ShotSource& src,
+const Receivers& shoot_to_receivers(ShotContext ctx, const ShotSource& src,
                                     const VisibilityBackend& vis, bool major) {
-  const Triangles& tris = s.solution.hierarchy->triangles;
-  const GatherSettings settings = gather_settings(s);
-  const SharedVertices& shared = s.scene.shared;
+  const Hierarchy& h = *ctx.solution.hierarchy;
+  const Triangles& tris = h.triangles;
+  const GatherSettings settings = gather_settings(ctx.options, ctx.scene, ctx.energy);
+  const SharedVertices& shared = ctx.scene.shared;
   // The mask is kept between shots and cleared where the last shot set it: a shot that reaches
   // a few rooms of a building costs those rooms, not a pass over the whole scene.
-  std::vector<uint8_t>& received = s.receivers.marked;
-  std::vector<uint32_t>& receivers = s.receivers.polygons;
+  std::vector<uint8_t>& received = ctx.receivers.marked;
+  std::vector<uint32_t>& receivers = ctx.receivers.polygons;
   if (received.size() != tris.size()) {
     received.assign(tris.size(), 0);
   } else {
@@ -66,7 +62,7 @@ const Receivers& shoot_to_receivers(SolverState& s, const ShotSource& src,
   }
   receivers.clear();
   // With a Lights list only the triangles it names are looked at; under MPI, only this rank's.
-  const int32_t influence = shooter_influence(s, src);
+  const int32_t influence = shooter_influence(h, ctx.scene.clusters, src);
   // The candidates: a Lights list's ranges, or the triangles not hidden behind a flat occluder
   // (occlusion_culling.h; built only when culling is on), or all.
   // The sun is not culled: it lies beyond the planes of all occluders, in no box.
@@ -74,16 +70,16 @@ const Receivers& shoot_to_receivers(SolverState& s, const ShotSource& src,
   std::vector<TriangleRange> ranges{{0, uint32_t(tris.size())}};
   const std::vector<uint32_t>* listed = nullptr;
   if (influence >= 0) {
-    ranges = s.solution.hierarchy->objects[size_t(influence)].lit;
-  } else if (!s.scene.culling.empty() && !sun) {
-    unhidden_triangles(s.scene.culling, src, s.receivers.unhidden);
-    s.stats.hidden += tris.size() - s.receivers.unhidden.size();
-    listed = &s.receivers.unhidden;
+    ranges = h.objects[size_t(influence)].lit;
+  } else if (!ctx.scene.culling.empty() && !sun) {
+    unhidden_triangles(ctx.scene.culling, src, ctx.receivers.unhidden);
+    ctx.stats.hidden += tris.size() - ctx.receivers.unhidden.size();
+    listed = &ctx.receivers.unhidden;
   }
   auto consider = [&](size_t n, auto&& triangle) {
     tbb::parallel_for(size_t(0), n, [&](size_t i) {
       const size_t p = triangle(i);
-      received[p] = s.ownership.owns(p) && may_receive(s, p, src) &&
+      received[p] = ctx.ownership.owns(p) && may_receive(h, ctx.scene.clusters, p, src) &&
                     src.roulette_reaches_triangle(triangle_box(tris.corners[p]), tris.corners[p][0],
                                                   tris.normal[p]);
     });
@@ -98,11 +94,11 @@ const Receivers& shoot_to_receivers(SolverState& s, const ShotSource& src,
   }
   // Work items: a polygon's vertices, or 64 of them for a finely subdivided one, so its
   // vertices spread across threads too.
-  std::vector<VertexRange>& work = s.receivers.gather_work;
+  std::vector<VertexRange>& work = ctx.receivers.gather_work;
   work.clear();
   for (size_t i = 0; i < receivers.size(); ++i) {
     const uint32_t p = receivers[i];
-    const uint32_t nv = uint32_t(s.solution.mesh.polygons[p].vertex_count());
+    const uint32_t nv = uint32_t(ctx.solution.mesh.polygons[p].vertex_count());
     const uint32_t step = nv < 256 ? nv : 64;
     for (uint32_t v = 0; v < nv; v += step) {
       work.push_back({p, v, std::min(nv, v + step), uint32_t(i)});
@@ -110,31 +106,31 @@ const Receivers& shoot_to_receivers(SolverState& s, const ShotSource& src,
   }
   // A light shoots once: nothing to keep its answers for.
   KeptRays* const kept =
-      src.light >= 0
-          ? nullptr
-          : prepare_kept_rays(s.kept, src, uint64_t(s.shots.count) + 1, receivers, s.solution.mesh,
-                              s.scene.clusters.size(), s.options.kept_rays_bytes);
-  parallel_gather(work.size(), 1, s.stats, [&](size_t begin, size_t end, GatherScratch& sc) {
+      src.light >= 0 ? nullptr
+                     : prepare_kept_rays(ctx.kept, src, uint64_t(ctx.shots.count) + 1, receivers,
+                                         ctx.solution.mesh, ctx.scene.clusters.size(),
+                                         ctx.options.kept_rays_bytes);
+  parallel_gather(work.size(), 1, ctx.stats, [&](size_t begin, size_t end, GatherScratch& sc) {
     for (size_t i = begin; i != end; ++i) {
       const VertexRange& w = work[i];
       const uint32_t p = w.polygon;
-      const PolygonMesh& mesh = s.solution.mesh.polygons[p];
-      std::vector<VertexState>& vs = s.solution.vertex_states[p];
+      const PolygonMesh& mesh = ctx.solution.mesh.polygons[p];
+      std::vector<VertexState>& vs = ctx.solution.vertex_states[p];
       const Vec3 n = tris.normal[p], centroid = tris.centroid(p);
-      const Vec3 rho = s.solution.material_of(p).reflectance;
-      const std::vector<TextureFactors>& factors = s.solution.texture_factors[p];
-      const GatherSettings own = receiver_settings(settings, s, p);
+      const Vec3 rho = ctx.solution.material_of(p).reflectance;
+      const std::vector<TextureFactors>& factors = ctx.solution.texture_factors[p];
+      const GatherSettings own = receiver_settings(settings, h, p);
       // A shared vertex is skipped when the one that gathers for it is in a received polygon.
       const std::vector<VertexCopy>& copies = shared.copies[p];
       auto next = std::lower_bound(copies.begin(), copies.end(), w.begin,
-                                   [](const VertexCopy& c, uint32_t v) { return c.vertex < v; });
+                                   [](const VertexCopy& x, uint32_t v) { return x.vertex < v; });
       for (uint32_t v = w.begin; v < w.end; ++v) {
         if (next != copies.end() && next->vertex == v) {
           if (received[next++->from_polygon]) continue;
         }
         VertexState& x = vs[v];
         const VertexRays rays = kept ? vertex_rays(*kept, w.receiver, v) : VertexRays{};
-        const Vec3 at = s.scene.buried.gather_point(p, v, mesh.positions[v]);
+        const Vec3 at = ctx.scene.buried.gather_point(p, v, mesh.positions[v]);
         const Vec3 dh =
             gather_from_source(at, n, centroid, src, vis, own, sc, kept ? &rays : nullptr);
         x.receive(dh, factors.empty() ? rho : rho * factors[v].reflectance, major,
@@ -146,17 +142,17 @@ const Receivers& shoot_to_receivers(SolverState& s, const ShotSource& src,
   // their own reflectance (the same Pure's, but each polygon's texture coordinates).
   tbb::parallel_for(size_t(0), receivers.size(), [&](size_t i) {
     const uint32_t p = receivers[i];
-    std::vector<VertexState>& vs = s.solution.vertex_states[p];
-    for (const VertexCopy& c : shared.copies[p]) {
-      if (!received[c.from_polygon]) continue;
-      const Vec3 dh = s.solution.vertex_states[c.from_polygon][c.from_vertex].last_gain;
+    std::vector<VertexState>& vs = ctx.solution.vertex_states[p];
+    for (const VertexCopy& copy : shared.copies[p]) {
+      if (!received[copy.from_polygon]) continue;
+      const Vec3 dh = ctx.solution.vertex_states[copy.from_polygon][copy.from_vertex].last_gain;
       // Whether it shoots is the copy's own (each polygon probes toward its own centroid, so a
       // shared vertex may be buried for one and not the other): what refinement reads back.
-      vs[c.vertex].receive(dh, s.solution.reflectance(p, c.vertex), major,
-                           !s.scene.buried.is_moved(p, c.vertex));
+      vs[copy.vertex].receive(dh, ctx.solution.reflectance(p, copy.vertex), major,
+                              !ctx.scene.buried.is_moved(p, copy.vertex));
     }
   });
-  return s.receivers;
+  return ctx.receivers;
 }
 
 }  // namespace rad

@@ -200,22 +200,24 @@ void measure_retention(SolverState& s, size_t c, double shot, double magnitude,
 
 }  // namespace
 
-void find_buried_vertices_once(SolverState& s, const VisibilityBackend& vis) {
+void find_buried_vertices_once(const SolverOptions& options, const Solution& sol,
+                               SceneCaches& scene, SolverStats& stats,
+                               const VisibilityBackend& vis) {
   // Without shadows nothing blocks a buried vertex's view, and it gathers where it is.
-  if (!s.scene.buried.found) {
-    if (s.options.shadows) {
-      s.scene.buried = find_all_buried_vertices(s.solution.hierarchy->triangles, s.solution.mesh,
-                                                vis, buried_probe(s.scene), s.stats.rays);
+  if (!scene.buried.found) {
+    if (options.shadows) {
+      scene.buried = find_all_buried_vertices(sol.hierarchy->triangles, sol.mesh, vis,
+                                              buried_probe(scene), stats.rays);
     } else {
-      s.scene.buried.moved.assign(s.solution.mesh.polygons.size(), {});
-      s.scene.buried.found = true;
+      scene.buried.moved.assign(sol.mesh.polygons.size(), {});
+      scene.buried.found = true;
     }
   }
 }
 
 std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   const auto t0 = std::chrono::steady_clock::now();
-  find_buried_vertices_once(s, vis);
+  find_buried_vertices_once(s.options, s.solution, s.scene, s.stats, vis);
   // The lights shoot first, in order, each once (every rank knows them: nothing to share);
   // then the cluster chosen.
   ShotSource src;
@@ -240,7 +242,9 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
     }
   }
   const bool major = src.major;
-  const std::vector<uint32_t>& receivers = shoot_to_receivers(s, src, vis, major).polygons;
+  const ShotContext shot_parts{s.options,  s.scene,     s.energy, s.shots, s.ownership,
+                               s.solution, s.receivers, s.kept,   s.stats};
+  const std::vector<uint32_t>& receivers = shoot_to_receivers(shot_parts, src, vis, major).polygons;
   const auto t1 = std::chrono::steady_clock::now();
 
   // Bookkeeping per received polygon: the energy it absorbed and the energy it holds unshot,
@@ -266,13 +270,14 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
       return;
     }
     count(i);
-    refining[i] = needs_refinement(s, receivers[i]);
+    refining[i] = needs_refinement(s.options, s.energy, s.scene, s.solution, receivers[i]);
   });
   std::vector<uint32_t> refined, to_refine;
   for (size_t i = 0; i < receivers.size(); ++i) {
     if (refining[i]) refined.push_back(uint32_t(i)), to_refine.push_back(receivers[i]);
   }
-  refine_after_shot(s, src, vis, major, to_refine);
+  refine_after_shot({s.options, s.energy, s.shots, s.solution, s.scene, s.stats}, s.receivers, src,
+                    vis, major, to_refine);
   if (src.major || s.options.log_minor_shots) s.shots.sources.push_back(std::move(src));
   tbb::parallel_for(size_t(0), refined.size(), [&](size_t j) { count(refined[j]); });
   if (shooter) {

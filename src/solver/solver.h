@@ -23,10 +23,13 @@ struct Shooter {
 /// MPI.
 std::optional<Shooter> choose_shooter(const SolverState& s);
 
-/// Finds the vertices inside solids (SceneCaches::buried) if not found yet: before the first
-/// shot or edit, and the first after a checkpoint was restored, when a backend is at hand.
-/// Without shadows nothing blocks a buried vertex's view, and every vertex gathers where it is.
-void find_buried_vertices_once(SolverState& s, const VisibilityBackend& vis);
+/// Finds the vertices of `sol`'s mesh inside solids (scene.buried) if not found yet: before the
+/// first shot or edit, and the first after a checkpoint was restored, when a backend is at hand;
+/// its probes' rays are counted in stats. Without shadows (options.shadows) nothing blocks a
+/// buried vertex's view, and every vertex gathers where it is.
+void find_buried_vertices_once(const SolverOptions& options, const Solution& sol,
+                               SceneCaches& scene, SolverStats& stats,
+                               const VisibilityBackend& vis);
 
 /// One shot: choose the shooter, shoot it to every receiving vertex, refine the receivers,
 /// update the energy bookkeeping and the history. Returns the record, or nothing when there

@@ -48,7 +48,7 @@ TEST(OutputMesh, TheIncrementalBuildIsTheWholeBuildShotAfterShot) {
   EXPECT_FALSE(changed);
   EXPECT_EQ(again, g);
   // One polygon split: new geometry, still the whole build's.
-  ASSERT_GT(force_subdivide(s, 0, *vis), 0u);
+  ASSERT_GT(force_subdivide(edit_context(s), 0, *vis), 0u);
   g = builder.update(s, &changed);
   EXPECT_TRUE(changed);
   EXPECT_NE(g, again);

@@ -144,7 +144,7 @@ TEST(BuriedVertices, WithoutShadowsNoVertexMovesNotEvenOneMadeLater) {
   o.max_shots = 6;
   SolverState s = make_solver_state(h, o);
   solve(s, *vis);
-  force_subdivide(s, 0, *vis);
+  force_subdivide(edit_context(s), 0, *vis);
   ASSERT_TRUE(s.scene.buried.found);
   for (size_t p = 0; p < s.scene.buried.moved.size(); ++p)
     EXPECT_TRUE(s.scene.buried.moved[p].empty()) << "polygon " << p;

@@ -76,7 +76,7 @@ double edit_then_continue(const std::string& object, const Material& m, Vec3 lam
   SolverState edited = make_solver_state(base_h, options());
   solve(edited, *base_vis);
   const int64_t shots_before = edited.shots.count;
-  set_material(edited, object_named(base_h, object), m, *base_vis);
+  set_material(edit_context(edited), object_named(base_h, object), m, *base_vis);
   EXPECT_GT(edited.energy.unshot_fraction(), options().converge)
       << "the edit must leave work to do";
   solve(edited, *base_vis);
@@ -115,7 +115,7 @@ TEST(Edits, TurningTheOnlyLightOffShootsItsLightBackOutToDarkness) {
     lit += mean_component(s.solution.radiosity(p, 0));
   ASSERT_GT(lit, 0.0);
   const int64_t shots_before = s.shots.count;
-  set_material(s, object_named(h, "lamp"), {Vec3(0.5f), Vec3(0.0f)}, *vis);
+  set_material(edit_context(s), object_named(h, "lamp"), {Vec3(0.5f), Vec3(0.0f)}, *vis);
   EXPECT_GT(s.energy.unshot_fraction(), options().converge) << "the edit must leave work to do";
   EXPECT_EQ(solve(s, *vis), StopReason::Converged);
   EXPECT_GT(s.shots.count, shots_before);
@@ -154,7 +154,7 @@ TEST(Edits, AColourChangeOfZeroMeanInAGreyRoomIsShotToo) {
   const auto base_vis = make_visibility_backend(BackendKind::Embree, base_h);
   SolverState edited = make_solver_state(base_h, options());
   solve(edited, *base_vis);
-  set_material(edited, object_named(base_h, "left"), {reddish, Vec3(0)}, *base_vis);
+  set_material(edit_context(edited), object_named(base_h, "left"), {reddish, Vec3(0)}, *base_vis);
   EXPECT_GT(edited.energy.unshot_fraction(), options().converge)
       << "the edit must leave work to do";
   solve(edited, *base_vis);
@@ -175,9 +175,11 @@ TEST(Edits, RejectsANonPureOrAnOutOfRangeMaterial) {
   const Hierarchy h = build_hierarchy(edit_scene(kLamp, kLeft, kBlack));
   const auto vis = make_visibility_backend(BackendKind::Embree, h);
   SolverState s = make_solver_state(h, options());
-  EXPECT_THROW(set_material(s, -1, {}, *vis), Error);
-  EXPECT_THROW(set_material(s, object_named(h, "floor"), {Vec3(1.5f), Vec3(0)}, *vis), Error);
-  EXPECT_THROW(set_material(s, object_named(h, "floor"), {Vec3(0.5f), Vec3(-1)}, *vis), Error);
+  EXPECT_THROW(set_material(edit_context(s), -1, {}, *vis), Error);
+  EXPECT_THROW(set_material(edit_context(s), object_named(h, "floor"), {Vec3(1.5f), Vec3(0)}, *vis),
+               Error);
+  EXPECT_THROW(
+      set_material(edit_context(s), object_named(h, "floor"), {Vec3(0.5f), Vec3(-1)}, *vis), Error);
 }
 
 TEST(Edits, ForcedSubdivisionGivesNewVerticesTheirExactRadiosity) {
@@ -190,7 +192,7 @@ TEST(Edits, ForcedSubdivisionGivesNewVerticesTheirExactRadiosity) {
   solve(s, *vis);
   const int32_t floor_polygon = int32_t(h.objects[size_t(object_named(h, "floor"))].first_triangle);
   const size_t before = s.solution.mesh.polygons[size_t(floor_polygon)].vertex_count();
-  const size_t added = force_subdivide(s, floor_polygon, *vis);
+  const size_t added = force_subdivide(edit_context(s), floor_polygon, *vis);
   const PolygonMesh& m = s.solution.mesh.polygons[size_t(floor_polygon)];
   const std::vector<VertexState>& vs = s.solution.vertex_states[size_t(floor_polygon)];
   EXPECT_EQ(added, 3u);
@@ -208,7 +210,7 @@ TEST(Edits, ForcedSubdivisionGivesNewVerticesTheirExactRadiosity) {
   Vec3 expected(0.0f);
   const Vec3 centroid = (m.positions[0] + m.positions[1] + m.positions[2]) / 3.0f;
   for (const ShotSource& src : s.shots.sources) {
-    if (!may_receive(s, size_t(floor_polygon), src)) continue;
+    if (!may_receive(*s.solution.hierarchy, s.scene.clusters, size_t(floor_polygon), src)) continue;
     expected += gather_from_source(mid, h.triangles.normal[size_t(floor_polygon)], centroid, src,
                                    *vis, gather_settings(s), sc);
   }
@@ -273,7 +275,7 @@ TEST(Edits, ALightsIntensityAndColourContinueToAFreshSolveOfTheEditedScene) {
   EXPECT_EQ(solve(edited, *vis), StopReason::Converged);
   const int64_t shots_before = edited.shots.count;
   const Vec3 orange(1.0f, 0.5f, 0.2f);
-  set_light(edited, 0, orange, 2.0f * kLampA.intensity);
+  set_light(edited.solution, edited.energy, 0, orange, 2.0f * kLampA.intensity);
   EXPECT_GT(edited.energy.unshot_fraction(), options().converge) << "the edit leaves work";
   EXPECT_EQ(solve(edited, *vis), StopReason::Converged);
   EXPECT_GT(edited.shots.count, shots_before) << "continued, not restarted";
@@ -298,7 +300,7 @@ TEST(Edits, SwitchingALightOffLeavesOnlyTheOtherLightsLight) {
   const auto vis = make_visibility_backend(BackendKind::Embree, h);
   SolverState edited = make_solver_state(h, options());
   solve(edited, *vis);
-  set_light(edited, 0, kLampA.colour, 0.0f);
+  set_light(edited.solution, edited.energy, 0, kLampA.colour, 0.0f);
   EXPECT_EQ(solve(edited, *vis), StopReason::Converged);
 
   const Hierarchy only_b = lit_room({kLampB});
@@ -312,7 +314,7 @@ TEST(Edits, SwitchingALightOffLeavesOnlyTheOtherLightsLight) {
   EXPECT_LE(d, 0.01);
 
   // And on again: back to the scene's own solution.
-  set_light(edited, 0, kLampA.colour, kLampA.intensity);
+  set_light(edited.solution, edited.energy, 0, kLampA.colour, kLampA.intensity);
   EXPECT_EQ(solve(edited, *vis), StopReason::Converged);
   SolverState both = make_solver_state(h, options());
   solve(both, *vis);
@@ -323,7 +325,7 @@ TEST(Edits, ALightEditBeforeTheFirstShotIsTheEditedScenesOwnStart) {
   // Before the light has shot, the edit changes what it will shoot: no second shot of it.
   const Hierarchy h = lit_room({kLampA});
   SolverState s = make_solver_state(h, options());
-  set_light(s, 0, Vec3(0.5f, 1.0f, 1.0f), 3.0f * kLampA.intensity);
+  set_light(s.solution, s.energy, 0, Vec3(0.5f, 1.0f, 1.0f), 3.0f * kLampA.intensity);
   EXPECT_EQ(s.energy.light_unshot[0], Vec3(1.5f, 3.0f, 3.0f));
   EXPECT_NEAR(s.energy.emitted_energy, s.energy.light_power[0] * 2.5,
               1e-6 * s.energy.emitted_energy);
@@ -334,12 +336,14 @@ TEST(Edits, RejectsAMissingLightABadValueOrALightTheSceneLeftOff) {
   off.intensity = 0.0f;
   const Hierarchy h = lit_room({kLampA, off});
   SolverState s = make_solver_state(h, options());
-  EXPECT_THROW(set_light(s, 2, Vec3(1.0f), 1.0f), Error);
-  EXPECT_THROW(set_light(s, -1, Vec3(1.0f), 1.0f), Error);
-  EXPECT_THROW(set_light(s, 0, Vec3(1.0f), -1.0f), Error);
-  EXPECT_THROW(set_light(s, 0, Vec3(1.0f), std::numeric_limits<float>::infinity()), Error);
-  EXPECT_THROW(set_light(s, 0, Vec3(-1.0f, 1.0f, 1.0f), 1.0f), Error);
-  EXPECT_THROW(set_light(s, 1, Vec3(1.0f), 10.0f), Error);
+  EXPECT_THROW(set_light(s.solution, s.energy, 2, Vec3(1.0f), 1.0f), Error);
+  EXPECT_THROW(set_light(s.solution, s.energy, -1, Vec3(1.0f), 1.0f), Error);
+  EXPECT_THROW(set_light(s.solution, s.energy, 0, Vec3(1.0f), -1.0f), Error);
+  EXPECT_THROW(
+      set_light(s.solution, s.energy, 0, Vec3(1.0f), std::numeric_limits<float>::infinity()),
+      Error);
+  EXPECT_THROW(set_light(s.solution, s.energy, 0, Vec3(-1.0f, 1.0f, 1.0f), 1.0f), Error);
+  EXPECT_THROW(set_light(s.solution, s.energy, 1, Vec3(1.0f), 10.0f), Error);
   EXPECT_EQ(s.energy.light_unshot[0], kLampA.colour) << "a refused edit changes nothing";
 }
 

@@ -34,7 +34,7 @@ Solved solve_with(const Hierarchy& h, BackendKind backend, size_t kept_bytes, in
     for (size_t i = 0; i < h.objects.size(); ++i) {
       if (h.objects[i].kind == ObjectKind::Pure &&
           max_component(h.objects[i].material.emission) > 0) {
-        set_material(s, int32_t(i),
+        set_material(edit_context(s), int32_t(i),
                      {h.objects[i].material.reflectance, 0.5f * h.objects[i].material.emission},
                      *vis);
         break;

@@ -49,7 +49,7 @@ TEST(OcclusionCulling, NoRayReachesATriangleItHidesFromAnySource) {
     for (uint32_t p : unhidden) kept[p] = 1;
     segments.clear();
     for (size_t p = 0; p < h.triangles.size(); ++p) {
-      if (!may_receive(s, p, src)) continue;
+      if (!may_receive(*s.solution.hierarchy, s.scene.clusters, p, src)) continue;
       ++receivable;
       if (kept[p]) continue;
       ++hidden;

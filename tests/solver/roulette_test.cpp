@@ -182,7 +182,9 @@ TEST(Roulette, TheFloorGainsTheSameOnAverageAndAShotSkipsWhatItDoesNotReach) {
   int64_t shot = 1;
   for (aim_roulette(src, level, shot); src.roulette_draw < 0.5f; aim_roulette(src, level, ++shot)) {
   }
-  shoot_to_receivers(f.s, src, *f.vis, false);
+  shoot_to_receivers({f.s.options, f.s.scene, f.s.energy, f.s.shots, f.s.ownership, f.s.solution,
+                      f.s.receivers, f.s.kept, f.s.stats},
+                     src, *f.vis, false);
   size_t reached = 0;
   for (size_t p = 0; p < floor_triangles; ++p) {
     Aabb b;
