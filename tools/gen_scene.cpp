@@ -22,14 +22,18 @@ int main(int argc, char** argv) {
                  "building: each room lights only the rooms within this many rooms (a Lights "
                  "list); -1: every room lights the whole building")
       ->capture_default_str();
+  int light_groups = 0;
+  app.add_option("--light-groups", light_groups,
+                 "building: the rooms dealt round this many light groups, g0, g1, ... (0: none)")
+      ->check(CLI::Range(0, 32));
   bool point_lights = false;
   app.add_flag("--point-lights", point_lights,
                "building: each room lit by a point light of the ceiling panel's on-axis "
                "intensity instead of by the panel");
   CLI11_PARSE(app, argc, argv);
   try {
-    rad::SceneDescription scene =
-        rad::generate_scene(rad::parse_scene_kind(kind), size, seed, lights_reach, point_lights);
+    rad::SceneDescription scene = rad::generate_scene(rad::parse_scene_kind(kind), size, seed,
+                                                      lights_reach, point_lights, light_groups);
     std::ofstream out(out_path);
     if (!out) throw rad::Error(fmt::format("cannot write {}", out_path));
     rad::write_description(scene, out);

@@ -234,17 +234,17 @@ std::vector<Vec3> OutputMeshBuilder::per_vertex(
   return out;
 }
 
-OutputMesh make_output_mesh(const SolverState& s, bool ambient, const LightGroupSolution* groups) {
+OutputMesh make_output_mesh(const SolverState& s, bool ambient) {
   OutputMeshBuilder builder;
   OutputMesh out;
   bool changed = false;
   out.geometry = builder.update(s, &changed);
   builder.values(s, ambient ? ambient_radiosity(s.energy, s.solution) : Vec3(0.0f), out);
-  if (groups) {
-    out.group_names = groups->names;
-    for (size_t g = 0; g < groups->names.size(); ++g) {
-      out.group_radiosity.push_back(
-          builder.per_vertex([&](size_t p, uint32_t v) { return groups->at(g, p, v); }));
+  if (s.solution.group_count > 0) {
+    out.group_names = light_groups_kept(*s.solution.hierarchy);
+    for (size_t g = 0; g < s.solution.group_count; ++g) {
+      out.group_radiosity.push_back(builder.per_vertex(
+          [&](size_t p, uint32_t v) { return s.solution.group_radiosity(g, p, v); }));
     }
   }
   return out;

@@ -112,8 +112,7 @@ class OutputMeshBuilder {
 };
 
 /// The whole solve flattened at once. With `ambient`, display adds Cohen's ambient term times
-/// each polygon's reflectance. With `groups` (solved on s's mesh), each group's radiosity too.
-OutputMesh make_output_mesh(const SolverState& s, bool ambient,
-                            const LightGroupSolution* groups = nullptr);
+/// each polygon's reflectance. With light groups, each group's radiosity too.
+OutputMesh make_output_mesh(const SolverState& s, bool ambient);
 
 }  // namespace rad

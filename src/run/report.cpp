@@ -51,8 +51,7 @@ size_t peak_memory_bytes() {
 void write_stats_json(const std::string& path, const RunOptions& run, const SceneJob& job,
                       const SolverState& s, StopReason stop, const RunTimes& t,
                       const SeamReport& seams, const std::optional<Camera>& camera,
-                      uint64_t job_fingerprint, const std::vector<RankReport>& ranks,
-                      const LightGroupSolution* groups) {
+                      uint64_t job_fingerprint, const std::vector<RankReport>& ranks) {
   using nlohmann::json;
   const VisibilityStats& r = s.stats.rays;
   const Vec3 ambient = ambient_radiosity(s.energy, s.solution);
@@ -127,7 +126,6 @@ void write_stats_json(const std::string& path, const RunOptions& run, const Scen
         {"refine", s.stats.refine_seconds},
         {"write", t.write},
         {"render", t.render},
-        {"groups", t.groups},
         {"total", t.total}}},
       {"seams",
        {{"shared_edges", seams.shared_edges},
@@ -168,15 +166,9 @@ void write_stats_json(const std::string& path, const RunOptions& run, const Scen
                        {"illuminance", {{"min", o.min}, {"mean", o.mean}, {"max", o.max}}}});
   }
   j["objects"] = objects;
-  if (groups && !groups->names.empty()) {
-    // Per light group, in the order of the outputs' group properties: its solve.
-    json list = json::array();
-    for (size_t g = 0; g < groups->names.size(); ++g) {
-      list.push_back({{"name", groups->names[g]},
-                      {"shots", groups->shots[g]},
-                      {"unshot_fraction", groups->unshot_fraction[g]}});
-    }
-    j["light_groups"] = list;
+  if (s.solution.group_count > 0) {
+    // The light groups' names, in the order of the outputs' group properties.
+    j["light_groups"] = light_groups_kept(*s.solution.hierarchy);
   }
   j["lights"] = s.solution.hierarchy->lights.size();
   // Each light's power (lumens with candela or lux in metres) as the solve counts it.

@@ -24,7 +24,6 @@ struct RunTimes {
   double parse = 0, build = 0, solve = 0, write = 0, total = 0;
   double gather = 0;  // MPI: rank 0 taking the ranks' polygons at the end (with the checkpoint)
   double render = 0;  // images by final gather (within `write`)
-  double groups = 0;  // the light groups' solves (solver/light_groups.h)
 };
 
 /// The statistics block as the original printed it, plus rad's own counters.
@@ -34,8 +33,7 @@ std::string format_statistics(const SolverState& s, double elapsed_seconds);
 void write_stats_json(const std::string& path, const RunOptions& run, const SceneJob& job,
                       const SolverState& s, StopReason stop, const RunTimes& times,
                       const SeamReport& seams, const std::optional<Camera>& camera = {},
-                      uint64_t job_fingerprint = 0, const std::vector<RankReport>& ranks = {},
-                      const LightGroupSolution* groups = nullptr);
+                      uint64_t job_fingerprint = 0, const std::vector<RankReport>& ranks = {});
 
 /// The "job_fingerprint" a stats file was written with (rad batch's record that a scene's
 /// outputs are complete), or nothing when the file is missing, unreadable or has none.

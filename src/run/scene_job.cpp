@@ -235,21 +235,20 @@ StopReason solve_job(SolverState& state, const PreparedSolve& prepared, const Ru
 // and with its exposure, so that the groups' linear images add up to the whole's. Adds the
 // groups' final gathers to times.render.
 void write_group_images(const OutputOptions& whole, const SolverState& state,
-                        const LightGroupSolution& groups, const VisibilityBackend& vis,
-                        const ToneMap& tone, const Camera& camera, bool quiet, RunTimes& times,
-                        const Say& say, StagedFiles& files) {
+                        const VisibilityBackend& vis, const ToneMap& tone, const Camera& camera,
+                        bool quiet, RunTimes& times, const Say& say, StagedFiles& files) {
+  const std::vector<std::string> names = light_groups_kept(*state.solution.hierarchy);
   std::vector<std::vector<std::string>> paths;
-  for (const std::string& image : whole.images)
-    paths.push_back(group_image_paths(image, groups.names));
+  for (const std::string& image : whole.images) paths.push_back(group_image_paths(image, names));
   SolverState view = group_view(state);
-  for (size_t g = 0; g < groups.names.size(); ++g) {
-    show_group(view, groups, g);
+  for (size_t g = 0; g < state.solution.group_count; ++g) {
+    show_group(view, state, g);
     OutputOptions o = whole;
     o.mesh.clear();
     o.camera = camera;
     o.images.clear();
     for (const std::vector<std::string>& p : paths) o.images.push_back(p[g]);
-    say(fmt::format("Light group \"{}\" alone:", groups.names[g]));
+    say(fmt::format("Light group \"{}\" alone:", names[g]));
     double seconds = 0.0;
     const SolvedScene solved{view, vis, quiet, &seconds};
     write_outputs(make_output_mesh(view, o.ambient), o, tone, say, files, &solved);
@@ -260,26 +259,25 @@ void write_group_images(const OutputOptions& whole, const SolverState& state,
 // The mesh, the images and the statistics (last: rad batch takes a stats file with this job's
 // fingerprint to mean every output is there), all or none. Sets times.write and times.total.
 void write_job_outputs(const RunOptions& run, const SceneJob& job, const SolverState& state,
-                       const LightGroupSolution& groups, const VisibilityBackend& vis,
-                       StopReason stop, uint64_t job_id, const std::vector<RankReport>& reports,
-                       Clock::time_point start, RunTimes& times, const Say& say) {
+                       const VisibilityBackend& vis, StopReason stop, uint64_t job_id,
+                       const std::vector<RankReport>& reports, Clock::time_point start,
+                       RunTimes& times, const Say& say) {
   const auto t = Clock::now();
-  const OutputMesh mesh = make_output_mesh(state, job.outputs.ambient, &groups);
+  const OutputMesh mesh = make_output_mesh(state, job.outputs.ambient);
   StagedFiles files;
   const SolvedScene solved{state, vis, run.quiet, &times.render};
   const ToneMap tone =
       scene_tone_map(state, mesh.display, job.outputs.tonemap, job.outputs.exposure);
   const std::optional<Camera> camera = write_outputs(mesh, job.outputs, tone, say, files, &solved);
-  if (!groups.states.empty())
-    write_group_images(job.outputs, state, groups, vis, tone, *camera, run.quiet, times, say,
-                       files);
+  if (job.outputs.group_images && camera && state.solution.group_count > 0)
+    write_group_images(job.outputs, state, vis, tone, *camera, run.quiet, times, say, files);
   times.write = since(t);
   times.total = since(start);
   if (!job.stats_json.empty()) {
     files.write(job.stats_json, [&](const std::string& path) {
       write_stats_json(path, run, job, state, stop, times,
                        measure_seams(mesh, state.solution.hierarchy->triangles), camera, job_id,
-                       reports, &groups);
+                       reports);
     });
   }
   files.commit();
@@ -335,10 +333,14 @@ SceneJobResult run_scene_job(const RunOptions& run, const SceneJob& asked, Ranks
   times.build = since(t);
   const size_t memory_limit = check_memory(state, growth, job, ranks != nullptr, say);
 
-  say(fmt::format("Starting Computation ({} triangles, {} backend, {} thread{}{})",
-                  hierarchy.triangles.size(), to_string(run.backend), prepared.threads(),
-                  prepared.threads() == 1 ? "" : "s",
-                  ranks ? fmt::format(" on each of {} MPI ranks", ranks->size()) : ""));
+  say(fmt::format(
+      "Starting Computation ({} triangles, {} backend, {} thread{}{}{})",
+      hierarchy.triangles.size(), to_string(run.backend), prepared.threads(),
+      prepared.threads() == 1 ? "" : "s",
+      ranks ? fmt::format(" on each of {} MPI ranks", ranks->size()) : "",
+      state.solution.group_count > 0
+          ? fmt::format(", {} light groups kept apart, no overshooting", state.solution.group_count)
+          : ""));
   t = Clock::now();
   const StopReason stop = solve_job(state, prepared, run, checkpoints, progress, memory_limit);
   times.solve = since(t);
@@ -349,27 +351,14 @@ SceneJobResult run_scene_job(const RunOptions& run, const SceneJob& asked, Ranks
   progress.finish(fmt::format("{} after {} shots", to_string(stop), state.shots.count));
   say_why_stopped(stop, memory_limit, job, say);
 
-  // Light groups: each solved on the mesh the whole solve made, by rank 0 alone under MPI.
-  // An interrupt (sticky) ends every group's solve at once: the outputs are written as they are.
-  const size_t group_count = light_group_names(hierarchy).size();
-  if (group_count > 1) say(fmt::format("Solving the {} light groups one by one...", group_count));
-  t = Clock::now();
-  const LightGroupSolution groups = solve_light_groups(
-      state, prepared.visibility(),
-      []() -> std::optional<StopReason> {
-        if (interrupt_signal()) return StopReason::Interrupted;
-        return std::nullopt;
-      },
-      /*keep_states=*/job.outputs.group_images && !job.outputs.images.empty());
-  times.groups = since(t);
-  if (job.outputs.group_images && group_count < 2) {
+  if (job.outputs.group_images && state.solution.group_count == 0) {
     warn(SourceLoc{job.input.path},
          "--group-images: the scene has no two light groups, so no image more is written; put "
          "emitters in groups with Group \"name\" (descriptions) or --light-group PATTERN=NAME "
          "(models)");
   }
-  write_job_outputs(run, job, state, groups, prepared.visibility(), stop, job_id, reports, start,
-                    times, say);
+  write_job_outputs(run, job, state, prepared.visibility(), stop, job_id, reports, start, times,
+                    say);
   if (!quiet) std::fputs(format_statistics(state, times.total).c_str(), stdout);
   // A scene lit by lights has its light in lux: what a lighting designer looks at first.
   if (!quiet && !state.solution.hierarchy->lights.empty())

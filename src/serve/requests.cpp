@@ -169,6 +169,24 @@ ExposureRequest parse_exposure_request(std::string_view body) {
   return r;
 }
 
+std::vector<float> parse_dimmers_request(std::string_view body, size_t groups) {
+  if (groups == 0) {
+    throw BadRequest(
+        "the scene has no light groups to dim: put its emitters in groups (Group \"name\" in a "
+        "description, --light-group for a model)");
+  }
+  const json j = parse_object(body, false);
+  only_fields(j, {"dimmers"});
+  if (!j.contains("dimmers") || !j["dimmers"].is_array() || j["dimmers"].size() != groups) {
+    throw BadRequest(
+        fmt::format("'dimmers' must be an array of {} numbers, one per light group", groups));
+  }
+  std::vector<float> d;
+  for (size_t g = 0; g < groups; ++g)
+    d.push_back(number(j["dimmers"][g], fmt::format("'dimmers'[{}]", g), 0, kMaxDimmer));
+  return d;
+}
+
 ExportRequest parse_export_request(std::string_view format,
                                    const std::multimap<std::string, std::string>& params) {
   static const std::pair<const char*, ExportFormat> kFormats[] = {

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "export/camera.h"
 #include "hierarchy/hierarchy.h"
@@ -54,6 +55,13 @@ struct ExposureRequest {
   bool refit = false;
 };
 ExposureRequest parse_exposure_request(std::string_view body);
+
+/// {"dimmers": [d0, d1, ...]}: one factor per light group of the scene (/api/scene's
+/// light_groups, `groups` of them), each in [0, kMaxDimmer]. Throws BadRequest for malformed
+/// JSON, unknown or missing fields, a scene without light groups, another count or a value out
+/// of range.
+inline constexpr float kMaxDimmer = 100.0f;
+std::vector<float> parse_dimmers_request(std::string_view body, size_t groups);
 
 /// GET /api/export.<format>?camera=ex,ey,ez,tx,ty,tz[,fov]&size=WxH (camera and size: PNG only).
 enum class ExportFormat : uint8_t { Ply, Off, Obj, Gltf, Glb, Png };

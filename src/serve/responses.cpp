@@ -5,6 +5,8 @@
 #include <cstring>
 #include <nlohmann/json.hpp>
 
+#include "solver/light_groups.h"
+
 namespace rad {
 namespace {
 
@@ -62,6 +64,7 @@ std::string scene_json(const Hierarchy& h, const Camera& camera, double converge
   return json{{"name", h.scene_name},
               {"objects", objects},
               {"lights", lights},
+              {"light_groups", light_groups_kept(h)},
               {"roots", h.roots},
               {"bounds", {{"min", vec(h.bounds.lo)}, {"max", vec(h.bounds.hi)}}},
               {"camera",
@@ -107,6 +110,7 @@ std::string status_json(const Hierarchy& h, const Snapshot& s) {
        {{"scale", s.tone.scale}, {"stops", s.exposure_stops}, {"locked", s.exposure_locked}}},
       {"objects", objects},
       {"lights", lights},
+      {"dimmers", s.dimmers},
       {"history", history},
       {"notice", s.notice}}
       .dump();

@@ -188,6 +188,10 @@ struct Server::Impl {
       const ExposureRequest r = parse_exposure_request(body);
       return session.set_exposure(r.stops, r.refit);
     });
+    post("/api/dimmers", [this](const std::string& body) {
+      return session.set_dimmers(
+          parse_dimmers_request(body, light_groups_kept(session.hierarchy()).size()));
+    });
     post("/api/pause", [this](const std::string&) { return session.pause(); });
     post("/api/resume", [this](const std::string&) { return session.resume(); });
 

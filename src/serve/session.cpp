@@ -7,7 +7,9 @@
 
 #include "core/error.h"
 #include "export/exposure.h"
+#include "serve/requests.h"
 #include "solver/edits.h"
+#include "solver/light_groups.h"
 #include "solver/solver.h"
 
 namespace rad {
@@ -154,6 +156,20 @@ bool Session::set_exposure(std::optional<float> stops, bool refit) {
   return enqueue(ExposureEdit{stops, refit});
 }
 
+bool Session::set_dimmers(std::vector<float> dimmers) {
+  const size_t groups = light_groups_kept(h_).size();
+  if (dimmers.size() != groups) {
+    throw Error(fmt::format("{} dimmers for {} light groups", dimmers.size(), groups));
+  }
+  for (float d : dimmers) {
+    if (!(d >= 0.0f && d <= kMaxDimmer)) {
+      throw Error(fmt::format("a dimmer is {}; it must be in [0, {}]", d, kMaxDimmer));
+    }
+  }
+  std::lock_guard lock(mutex_);
+  return enqueue(DimmerEdit{std::move(dimmers)});
+}
+
 std::shared_ptr<const Snapshot> Session::snapshot() const {
   std::lock_guard lock(snapshot_mutex_);
   return snapshot_;
@@ -282,6 +298,11 @@ void Session::apply(const Edit& edit) {
       rate_mark_time_ = Clock::now();
       notice_ = r->original_materials ? "restarted with the scene's materials and lights"
                                       : "restarted with the current materials and lights";
+    } else if (const auto* x = std::get_if<DimmerEdit>(&edit)) {
+      dimmers_ = x->dimmers;
+      std::string list;
+      for (float d : dimmers_) list += fmt::format("{}{:.3g}", list.empty() ? "" : ", ", d);
+      notice_ = fmt::format("light groups dimmed to {}", list);
     } else if (const auto* x = std::get_if<ExposureEdit>(&edit)) {
       if (x->stops) exposure_stops_ = *x->stops;
       if (x->refit) exposure_locked_ = false;  // refitted by the next publish, then locked
@@ -343,9 +364,28 @@ void Session::publish() {
   snap->rays_per_second = rays_per_second_;
   snap->seconds = solve_seconds_;
   snap->build_seconds = publish_seconds_;
+  // Light groups dimmed: the colours shown mix the groups' radiosities, each times its
+  // dimmer, plus the display's ambient term (the groups' sum at 1 is the whole solve).
+  const size_t groups = state_.solution.group_count;
+  if (dimmers_.size() != groups) dimmers_.assign(groups, 1.0f);
+  snap->dimmers = dimmers_;
+  const bool dimmed =
+      std::any_of(dimmers_.begin(), dimmers_.end(), [](float d) { return d != 1.0f; });
+  std::vector<std::vector<Vec3>> group_radiosity;
+  if (dimmed) {
+    for (size_t g = 0; g < groups; ++g) {
+      group_radiosity.push_back(builder_.per_vertex(
+          [&](size_t p, uint32_t v) { return state_.solution.group_radiosity(g, p, v); }));
+    }
+  }
   snap->colour.resize(snap->mesh.display.size());
   for (size_t i = 0; i < snap->mesh.display.size(); ++i) {
-    snap->colour[i] = tone_map(snap->mesh.display[i], snap->tone);
+    Vec3 shown = snap->mesh.display[i];
+    if (dimmed) {
+      shown -= snap->mesh.radiosity[i];
+      for (size_t g = 0; g < groups; ++g) shown += group_radiosity[g][i] * dimmers_[g];
+    }
+    snap->colour[i] = tone_map(shown, snap->tone);
   }
   const std::vector<int64_t> elements = elements_per_object(state_);
   snap->objects.resize(h_.objects.size());

@@ -85,6 +85,10 @@ class Session {
   /// Sets the user's exposure offset (stops, in [-20, 20]) and/or refits the automatic exposure
   /// to the current solution. Throws rad::Error for stops out of range.
   bool set_exposure(std::optional<float> stops, bool refit);
+  /// Sets each light group's factor in the colours shown (one per group, in [0, 100]): the
+  /// groups' radiosities mixed, without a new solve. Throws rad::Error for another count or a
+  /// factor out of range.
+  bool set_dimmers(std::vector<float> dimmers);
 
   /// The latest snapshot (never null).
   std::shared_ptr<const Snapshot> snapshot() const;
@@ -122,8 +126,11 @@ class Session {
     std::optional<float> stops;
     bool refit;
   };
-  using Edit =
-      std::variant<MaterialEdit, LightEdit, SubdivideEdit, PauseEdit, RestartEdit, ExposureEdit>;
+  struct DimmerEdit {
+    std::vector<float> dimmers;
+  };
+  using Edit = std::variant<MaterialEdit, LightEdit, SubdivideEdit, PauseEdit, RestartEdit,
+                            ExposureEdit, DimmerEdit>;
 
   bool enqueue(Edit e);  // with mutex_ held by the caller
   void run();            // the solver thread
@@ -147,7 +154,8 @@ class Session {
   bool exposure_locked_ = false;
   bool refit_pending_ = false;
   float exposure_stops_ = 0.0f;
-  float base_scale_ = 1.0f;  // the automatic exposure, before the user's stops
+  float base_scale_ = 1.0f;     // the automatic exposure, before the user's stops
+  std::vector<float> dimmers_;  // per light group, its factor in the colours shown
   std::string notice_;
   OutputMeshBuilder builder_;
   uint64_t version_ = 0, mesh_version_ = 0;

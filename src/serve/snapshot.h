@@ -42,6 +42,7 @@ struct Snapshot {
   bool exposure_locked = false;                     // tone.scale no longer follows the solve
   std::vector<ObjectSnapshot> objects;              // per hierarchy object
   std::vector<LightControls> lights;                // per light of the hierarchy, as applied
+  std::vector<float> dimmers;                       // per light group: its factor in `colour`
   std::vector<std::pair<int64_t, double>> history;  // (shot, unshot fraction), at most ~256
   std::string notice;  // the outcome of the last edit, for the page ("" when none)
 };

@@ -22,7 +22,7 @@ namespace {
 // order and float layout: a checkpoint resumes on the machine kind that wrote it.
 constexpr char kMagic[8] = {'R', 'A', 'D', 'C', 'K', 'P', 'T', '\n'};
 // The payload's layout version: a checkpoint of another layout is refused.
-constexpr uint32_t kFormat = 9;
+constexpr uint32_t kFormat = 10;
 constexpr size_t kHeader = sizeof kMagic + sizeof(uint32_t) + 3 * sizeof(uint64_t);
 
 struct HistoryRecord {
@@ -83,6 +83,9 @@ uint64_t solve_fingerprint(const Hierarchy& h, const SolverOptions& o, BackendKi
         f.add(uint64_t(v->size())).bytes(v->data(), v->size() * sizeof(float));
     }
   }
+  // The light groups: which emitter is in which is another split of the same light.
+  for (const SceneObject& ob : h.objects) f.add(std::string_view(ob.group));
+  for (const Light& l : h.lights) f.add(std::string_view(l.group));
   f.add(o.shadows).add(o.sample_grid).add(o.max_sample_grid).add(o.method);
   f.add(o.subdivision_threshold).add(o.midpoints).add(o.min_size).add(o.max_size);
   f.add(o.intensity_cut)
@@ -102,7 +105,8 @@ void write_checkpoint(const std::string& path, const SolverState& s, uint64_t fi
   w.pod(uint64_t(s.solution.mesh.polygons.size()));
   for (size_t p = 0; p < s.solution.mesh.polygons.size(); ++p)
     write_polygon(w, s.solution.mesh.polygons[p], s.solution.vertex_states[p],
-                  s.solution.texture_factors[p], s.scene.shared.copies[p]);
+                  s.solution.group_states_of(p), s.solution.texture_factors[p],
+                  s.scene.shared.copies[p]);
   w.vec(s.solution.materials);
   w.vec(s.energy.unshot_energy);
   w.pod(s.energy.emitted_energy), w.pod(s.energy.absorbed_energy), w.pod(s.shots.count),
@@ -165,12 +169,13 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   const size_t np = s.solution.mesh.polygons.size();
   Mesh mesh;
   mesh.polygons.resize(np);
-  std::vector<std::vector<VertexState>> states(np);
+  std::vector<std::vector<VertexState>> states(np), group_states(np);
   std::vector<std::vector<VertexCopy>> copies(np);
   std::vector<std::vector<TextureFactors>> factors(np);
   for (size_t p = 0; p < np; ++p) {
-    read_polygon(r, mesh.polygons[p], states[p], factors[p], copies[p], np,
-                 is_textured(s.solution.hierarchy->triangles, p, s.solution.object_of(p)));
+    read_polygon(r, mesh.polygons[p], states[p], group_states[p], factors[p], copies[p], np,
+                 is_textured(s.solution.hierarchy->triangles, p, s.solution.object_of(p)),
+                 s.solution.group_count);
   }
   // A copy's source gathers: it is a vertex, and no copy itself (a chain would have the shot
   // read a gain while another thread writes it).
@@ -222,6 +227,7 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   for (size_t p = 0; p < np; ++p) initial[p] = uint32_t(s.solution.mesh.polygons[p].vertex_count());
   s.solution.mesh = std::move(mesh);
   s.solution.vertex_states = std::move(states);
+  if (s.solution.group_count > 0) s.solution.group_states = std::move(group_states);
   s.solution.texture_factors = std::move(factors);
   s.scene.shared.copies = std::move(shared.copies);
   find_edge_midpoints(s.scene.shared, s.solution.mesh, s.solution.hierarchy->triangles,

@@ -57,6 +57,8 @@ void release_foreign(SolverState& s) {
     if (s.ownership.owns(p)) continue;
     s.solution.mesh.polygons[p] = PolygonMesh{};
     std::vector<VertexState>().swap(s.solution.vertex_states[p]);
+    if (!s.solution.group_states.empty())
+      std::vector<VertexState>().swap(s.solution.group_states[p]);
     std::vector<VertexCopy>().swap(s.scene.shared.copies[p]);
     s.energy.unshot_energy[p] = UnshotEnergy{};
   }
@@ -81,7 +83,8 @@ std::vector<RankReport> collect(SolverState& s) {
       if (!s.ownership.owns(p)) continue;
       w.pod(uint32_t(p));
       write_polygon(w, s.solution.mesh.polygons[p], s.solution.vertex_states[p],
-                    s.solution.texture_factors[p], s.scene.shared.copies[p]);
+                    s.solution.group_states_of(p), s.solution.texture_factors[p],
+                    s.scene.shared.copies[p]);
       w.pod(s.energy.unshot_energy[p]);
       // Where its buried vertices gather: what rank 0 renders and solves light groups with.
       w.vec(p < s.scene.buried.moved.size() ? s.scene.buried.moved[p] : std::vector<MovedVertex>{});
@@ -100,10 +103,13 @@ std::vector<RankReport> collect(SolverState& s) {
       if (p >= s.solution.mesh.polygons.size() ||
           s.ownership.cluster_owner[s.scene.clusters.cluster_of[p]] != uint32_t(r))
         in.fail(fmt::format("polygon {} is not the rank's", p));
-      read_polygon(in, s.solution.mesh.polygons[p], s.solution.vertex_states[p],
+      std::vector<VertexState> group_states;
+      read_polygon(in, s.solution.mesh.polygons[p], s.solution.vertex_states[p], group_states,
                    s.solution.texture_factors[p], s.scene.shared.copies[p],
                    s.solution.mesh.polygons.size(),
-                   is_textured(s.solution.hierarchy->triangles, p, s.solution.object_of(p)));
+                   is_textured(s.solution.hierarchy->triangles, p, s.solution.object_of(p)),
+                   s.solution.group_count);
+      if (s.solution.group_count > 0) s.solution.group_states[p] = std::move(group_states);
       s.energy.unshot_energy[p] = in.pod<UnshotEnergy>();
       std::vector<MovedVertex> moved;
       in.vec(moved);

@@ -34,13 +34,20 @@ void set_material(EditContext ctx, int32_t object, const Material& m,
   const Vec3 d_e = m.emission - old.emission, d_rho = m.reflectance - old.reflectance;
   // A texture stays: its factors scale the new reflectance.
   ctx.solution.materials[size_t(object)] = m;
+  const size_t groups = ctx.solution.group_count;
   for (uint32_t t = o.first_triangle; t < o.first_triangle + o.triangle_count; ++t) {
     std::vector<VertexState>& vs = ctx.solution.vertex_states[t];
     const std::vector<TextureFactors>& factors = ctx.solution.texture_factors[t];
+    // The change of emission is the object's light group's; each group's light reflects anew.
     for (size_t v = 0; v < vs.size(); ++v) {
-      vs[v].unshot += factors.empty() ? d_e + d_rho * vs[v].irradiance
-                                      : d_e * factors[v].emission +
-                                            d_rho * factors[v].reflectance * vs[v].irradiance;
+      const Vec3 e = factors.empty() ? d_e : d_e * factors[v].emission;
+      const Vec3 r = factors.empty() ? d_rho : d_rho * factors[v].reflectance;
+      vs[v].unshot += e + r * vs[v].irradiance;
+      for (size_t g = 0; g < groups; ++g) {
+        VertexState& x = ctx.solution.group_states[t][v * groups + g];
+        x.unshot +=
+            (ctx.solution.object_group[size_t(object)] == g ? e : Vec3(0.0f)) + r * x.irradiance;
+      }
     }
     ctx.energy.emitted_energy += double(h.triangles.area[t]) * double(mean_component(d_e));
     ctx.energy.unshot_energy[t] = polygon_unshot_energy(ctx.solution, t);
@@ -124,6 +131,8 @@ size_t force_subdivide(EditContext ctx, int32_t polygon, const VisibilityBackend
     ++ctx.stats.subdivisions;
   }
   vs.resize(m.vertex_count());
+  const size_t groups = ctx.solution.group_count;
+  if (groups > 0) ctx.solution.group_states[size_t(polygon)].resize(m.vertex_count() * groups);
   std::vector<TextureFactors>& factors = ctx.solution.texture_factors[size_t(polygon)];
   if (!factors.empty()) {
     factors.resize(m.vertex_count());
@@ -153,10 +162,19 @@ size_t force_subdivide(EditContext ctx, int32_t polygon, const VisibilityBackend
       VertexState& mid = vs[c.vertex];
       const Vec3 at =
           ctx.scene.buried.gather_point(size_t(polygon), c.vertex, m.positions[c.vertex]);
+      sc.group_all.resize(groups), sc.group_major.resize(groups);
       mid.irradiance = regather_shots(*ctx.solution.hierarchy, ctx.scene.clusters, ctx.shots, at,
-                                      uint32_t(polygon), false, vis, settings, sc, &mid.major);
+                                      uint32_t(polygon), false, vis, settings, sc, &mid.major,
+                                      sc.group_all, sc.group_major);
       mid.unshot = (vs[c.a].unshot + vs[c.b].unshot) * 0.5f;  // transient: interpolated
       mid.last_gain = Vec3(0.0f);
+      for (size_t g = 0; g < groups; ++g) {
+        std::vector<VertexState>& gs = ctx.solution.group_states[size_t(polygon)];
+        VertexState& x = gs[c.vertex * groups + g];
+        x.irradiance = sc.group_all[g], x.major = sc.group_major[g];
+        x.unshot = (gs[c.a * groups + g].unshot + gs[c.b * groups + g].unshot) * 0.5f;
+        x.last_gain = Vec3(0.0f);
+      }
     }
   });
   ctx.stats.exact_midpoints += created.size();

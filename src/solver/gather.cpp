@@ -49,14 +49,22 @@ struct KernelSums {
   float plain() const { return lane_sum(p); }
 };
 
+// Per lane of a SampleLanes, the radiosity it shoots: its own (r, g, b) or a light group's
+// share (ShotSource::groups).
+struct LaneValues {
+  const float *r, *g, *b;
+};
+LaneValues values_of(const SampleLanes& s) { return {s.r.data(), s.g.data(), s.b.data()}; }
+
 // The EQ 7 weight A_i cos cos / (r^2 (pi r^2 + A_i)) of every lane of `s` (each sample with its
-// own normal and area, 0 for padding) added to `sums`. The unshot radiosity of group g (lanes
+// own normal and area, 0 for padding) added to `sums`, the weights times `values`. The unshot
+// radiosity of group g (lanes
 // [W g, W (g + 1))) counts with factor visible[parent[g]] (1 or 0), or 1 when visible is null.
 // Coarse samples also write each weight to k[i] and sum the plain integrand. Branch-free: each
 // group of W lanes is a few vector instructions.
 template <bool Coarse>
-KernelSums add_kernels(const SampleLanes& s, const Vec3& x, const Vec3& n, const float* visible,
-                       const uint32_t* parent, float* k) {
+KernelSums add_kernels(const SampleLanes& s, LaneValues values, const Vec3& x, const Vec3& n,
+                       const float* visible, const uint32_t* parent, float* k) {
   constexpr float pi = std::numbers::pi_v<float>;
   const Lanes xx = splat(x.x), xy = splat(x.y), xz = splat(x.z);
   const Lanes nx = splat(n.x), ny = splat(n.y), nz = splat(n.z);
@@ -78,9 +86,9 @@ KernelSums add_kernels(const SampleLanes& s, const Vec3& x, const Vec3& n, const
     }
     const Lanes kvis = visible ? kv * visible[parent[group]] : kv;
     sums.w += kv;
-    sums.r += kvis * load(&s.r[c]);
-    sums.g += kvis * load(&s.g[c]);
-    sums.b += kvis * load(&s.b[c]);
+    sums.r += kvis * load(&values.r[c]);
+    sums.g += kvis * load(&values.g[c]);
+    sums.b += kvis * load(&values.b[c]);
   }
   return sums;
 }
@@ -88,9 +96,9 @@ KernelSums add_kernels(const SampleLanes& s, const Vec3& x, const Vec3& n, const
 // Near field (analytic method): the source's unshot radiosity weighted over the fine samples,
 // each group taking the visibility of its coarse sample (coarse_visible, 1 or 0). Returns false
 // when no fine sample faces the receiver.
-bool near_field_mean(const Vec3& x, const Vec3& n, const ShotSource& src,
+bool near_field_mean(const Vec3& x, const Vec3& n, const ShotSource& src, LaneValues fine,
                      const float* coarse_visible, Vec3* mean) {
-  const KernelSums sums = add_kernels<false>(src.fine_sample, x, n, coarse_visible,
+  const KernelSums sums = add_kernels<false>(src.fine_sample, fine, x, n, coarse_visible,
                                              src.fine_group_parent.data(), nullptr);
   const float weight = sums.weight();
   if (weight <= 0.0f) return false;
@@ -298,10 +306,10 @@ void trace_active(const Vec3& x, const Vec3& n, const ShotSource& src, size_t na
   kept->record[0] = kept->epoch;
 }
 
-// gather_from_source without the roulette.
+// gather_from_source without the roulette. `groups`, when not empty, must hold 0 on entry.
 Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const ShotSource& src,
                 const VisibilityBackend& vis, const GatherSettings& st, GatherScratch& scratch,
-                const VertexRays* kept) {
+                const VertexRays* kept, std::span<Vec3> groups) {
   const Vec3 x = x_vertex + (centroid - x_vertex) * st.inset;
   // One-sided source: a receiver behind every one of its triangles gets nothing.
   const int side = receiver_side(src, x);
@@ -317,7 +325,7 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
   scratch.weight.resize(ns);
   scratch.active.resize(ns);
   float* k = scratch.weight.data();
-  const KernelSums sums = add_kernels<true>(sm, x, n, nullptr, nullptr, k);
+  const KernelSums sums = add_kernels<true>(sm, values_of(sm), x, n, nullptr, nullptr, k);
   const float weight_sum = sums.weight();
   const Vec3 unoccluded = sums.weighted();
   size_t na = 0;
@@ -376,14 +384,29 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
     penumbra_rounds(x, n, src, na, vis, st, scratch);
   }
 
+  // From here on the gain is linear in the values the source shoots: the light groups' shares
+  // (ShotSource::groups) go through the same weights and visibility as the whole, so they add
+  // up to it.
+  auto each_group = [&](auto&& gain) {
+    for (size_t g = 0; g < groups.size(); ++g) groups[g] = gain(src.groups[g]);
+  };
+  auto lanes = [](const std::vector<float>& r, const std::vector<float>& g,
+                  const std::vector<float>& b) {
+    return LaneValues{r.data(), g.data(), b.data()};
+  };
   if (fine_eq7) {
     scratch.coarse_visible.assign(ns, traced ? 0.0f : 1.0f);
     if (traced) {
       for (size_t j = 0; j < na; ++j) scratch.coarse_visible[scratch.active[j]] = scratch.clear[j];
     }
-    return add_kernels<false>(src.fine_sample, x, n, scratch.coarse_visible.data(),
-                              src.fine_group_parent.data(), nullptr)
-        .weighted();
+    auto fine_gain = [&](LaneValues fine) {
+      return add_kernels<false>(src.fine_sample, fine, x, n, scratch.coarse_visible.data(),
+                                src.fine_group_parent.data(), nullptr)
+          .weighted();
+    };
+    each_group(
+        [&](const GroupShare& gs) { return fine_gain(lanes(gs.fine_r, gs.fine_g, gs.fine_b)); });
+    return fine_gain(values_of(src.fine_sample));
   }
   // Near field (exact form factor only): the unshot radiosity weighted over the fine samples,
   // each taking its stratum's visibility.
@@ -393,25 +416,49 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
       for (size_t j = 0; j < na; ++j) scratch.coarse_visible[scratch.active[j]] = scratch.clear[j];
     }
     Vec3 mean;
-    if (near_field_mean(x, n, src, scratch.coarse_visible.data(), &mean)) return mean * *ff;
+    if (near_field_mean(x, n, src, values_of(src.fine_sample), scratch.coarse_visible.data(),
+                        &mean)) {
+      each_group([&](const GroupShare& gs) {
+        Vec3 m(0.0f);
+        near_field_mean(x, n, src, lanes(gs.fine_r, gs.fine_g, gs.fine_b),
+                        scratch.coarse_visible.data(), &m);
+        return m * *ff;
+      });
+      return mean * *ff;
+    }
   }
   // The visible part of the source holds no sample (a sliver above the tangent plane): it is
   // taken unoccluded with the source's mean unshot radiosity.
-  if (ff && weight_sum <= 0.0f) return src.mean_unshot * *ff;
-  if (!traced) return unoccluded * scale;
+  if (ff && weight_sum <= 0.0f) {
+    each_group([&](const GroupShare& gs) { return gs.mean_unshot * *ff; });
+    return src.mean_unshot * *ff;
+  }
+  if (!traced) {
+    each_group([&](const GroupShare& gs) {
+      Vec3 sum(0.0f);
+      for (size_t i = 0; i < ns; ++i) sum += Vec3(gs.r[i], gs.g[i], gs.b[i]) * k[i];
+      return sum * scale;
+    });
+    return unoccluded * scale;
+  }
   // The visible samples summed afresh (not the blocked ones subtracted): a vertex in full
   // umbra gets exactly zero.
-  Vec3 visible(0.0f);
-  for (size_t j = 0; j < na; ++j) {
-    const float c = scratch.clear[j];  // k x 1 is k: all-or-nothing points as they were
-    if (c > 0.0f) visible += sm.value(scratch.active[j]) * (k[scratch.active[j]] * c);
-  }
-  return visible * scale;
+  auto visible_gain = [&](LaneValues v) {
+    Vec3 visible(0.0f);
+    for (size_t j = 0; j < na; ++j) {
+      const float c = scratch.clear[j];  // k x 1 is k: all-or-nothing points as they were
+      const uint32_t i = scratch.active[j];
+      if (c > 0.0f) visible += Vec3(v.r[i], v.g[i], v.b[i]) * (k[i] * c);
+    }
+    return visible * scale;
+  };
+  each_group([&](const GroupShare& gs) { return visible_gain(lanes(gs.r, gs.g, gs.b)); });
+  return visible_gain(values_of(sm));
 }
 
 // gather_from_source for a light: its illuminance at x times what it shoots, times the part of
 // its shadow rays that reach it (one for a point or spot light, kSunRays for the sun; below the
-// intensity cut one stands for all, as for a surface).
+// intensity cut one stands for all, as for a surface). All of it is its own light group's.
 Vec3 gather_light(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const ShotSource& src,
                   const VisibilityBackend& vis, const GatherSettings& st, GatherScratch& scratch) {
   const Vec3 x = x_vertex + (centroid - x_vertex) * st.inset;
@@ -446,18 +493,27 @@ Vec3 gather_light(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, con
 
 Vec3 gather_from_source(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid,
                         const ShotSource& src, const VisibilityBackend& vis,
-                        const GatherSettings& st, GatherScratch& scratch, const VertexRays* kept) {
+                        const GatherSettings& st, GatherScratch& scratch, const VertexRays* kept,
+                        std::span<Vec3> groups) {
   // The roulette looks at the vertex itself, not the point moved inside its polygon: coplanar
   // polygons sharing a vertex make the same choice for it. Its cosine bounds allow for the move.
   assert(st.inset <= kRouletteSlack);
-  if (src.light >= 0) return gather_light(x_vertex, n, centroid, src, vis, st, scratch);
+  std::fill(groups.begin(), groups.end(), Vec3(0.0f));
+  if (src.light >= 0) {
+    const Vec3 h = gather_light(x_vertex, n, centroid, src, vis, st, scratch);
+    if (!groups.empty()) groups[size_t(src.light_group)] = h;
+    return h;
+  }
+  assert(groups.empty() || groups.size() == src.groups.size());
   const float w = src.roulette_weight(x_vertex, n, st.inset * glm::length(centroid - x_vertex));
   if (w == 0.0f) {
     ++scratch.stats.roulette;
     return Vec3(0.0f);
   }
-  const Vec3 h = gather_all(x_vertex, n, centroid, src, vis, st, scratch, kept);
-  return w == 1.0f ? h : h * w;
+  const Vec3 h = gather_all(x_vertex, n, centroid, src, vis, st, scratch, kept, groups);
+  if (w == 1.0f) return h;
+  for (Vec3& g : groups) g *= w;
+  return h * w;
 }
 
 void parallel_gather(size_t n, size_t grain, SolverStats& stats,

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "solver/kept_rays.h"
@@ -22,8 +23,17 @@ struct GatherScratch {
   std::vector<float> coarse_visible;  // near field: visible part of each coarse sample
   std::vector<float> round_ends;      // a penumbra round's ends (draw_ray_ends)
   std::vector<float> clear;           // per active sample, the part of its rays not blocked
+  std::vector<Vec3> group_gain;       // with light groups: each group's part of a gain
+  std::vector<Vec3> group_all, group_major;  // regather_shots' sums per group (refine.h)
   SolverStats stats;
 };
+
+/// Each light group's part of a point's gain (gather_from_source), in `scratch`'s buffer sized
+/// for `groups` of them: empty without groups.
+inline std::span<Vec3> group_gains(GatherScratch& scratch, size_t groups) {
+  scratch.group_gain.resize(groups);
+  return scratch.group_gain;
+}
 
 struct GatherSettings {
   FormFactorMethod method = FormFactorMethod::Analytic;
@@ -50,11 +60,15 @@ int receiver_side(const ShotSource& src, const Vec3& x);
 /// x is first moved a tiny fraction towards the centroid, so a vertex on the line where two
 /// polygons meet is evaluated inside its own polygon, where the neighbour is not edge-on.
 /// With `kept`, the shadow rays whose answers it holds are not traced again, and the answers
-/// of those traced are kept in it (kept_rays.h); the result is the same. Thread-safe given a
-/// per-thread scratch (and a record of kept answers no other thread uses).
+/// of those traced are kept in it (kept_rays.h); the result is the same. With light groups,
+/// `groups` (one per group, as many as the source's ShotSource::groups, or for a light the
+/// solution's group count) gets each group's part of the gain, the same weights and visibility
+/// applied to its share: they add up to the result. Thread-safe given a per-thread scratch (and
+/// a record of kept answers no other thread uses).
 Vec3 gather_from_source(const Vec3& x, const Vec3& n, const Vec3& centroid, const ShotSource& src,
                         const VisibilityBackend& vis, const GatherSettings& settings,
-                        GatherScratch& scratch, const VertexRays* kept = nullptr);
+                        GatherScratch& scratch, const VertexRays* kept = nullptr,
+                        std::span<Vec3> groups = {});
 
 /// The frame of every parallel gathering loop: body(begin, end, scratch) over [0, n) in chunks
 /// of about `grain`, each chunk on one thread with denormals flushed (core/denormals.h) and that

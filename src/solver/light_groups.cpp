@@ -1,10 +1,11 @@
 #include "solver/light_groups.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cassert>
-#include <limits>
 
-#include "solver/energy_balance.h"
+#include "core/error.h"
 
 namespace rad {
 
@@ -24,72 +25,39 @@ std::vector<std::string> light_group_names(const Hierarchy& h) {
   return names;
 }
 
-namespace {
-
-// The radiosity of every vertex of `sol`, flat in polygon order.
-std::vector<Vec3> vertex_radiosity(const Solution& sol, const std::vector<size_t>& first_vertex) {
-  std::vector<Vec3> b(first_vertex.back());
-  for (size_t p = 0; p < sol.vertex_states.size(); ++p) {
-    for (uint32_t v = 0; v < sol.vertex_states[p].size(); ++v)
-      b[first_vertex[p] + v] = sol.radiosity(p, v);
-  }
-  return b;
+std::vector<std::string> light_groups_kept(const Hierarchy& h) {
+  std::vector<std::string> names = light_group_names(h);
+  const bool named =
+      std::any_of(names.begin(), names.end(), [](const std::string& g) { return !g.empty(); });
+  if (names.size() < 2 || !named) names.clear();
+  return names;
 }
 
-}  // namespace
-
-LightGroupSolution solve_light_groups(const SolverState& solved, const VisibilityBackend& vis,
-                                      const std::function<std::optional<StopReason>()>& stop,
-                                      bool keep_states) {
-  const Hierarchy& h = *solved.solution.hierarchy;
-  LightGroupSolution out;
-  out.names = light_group_names(h);
-  const bool named = std::any_of(out.names.begin(), out.names.end(),
-                                 [](const std::string& g) { return !g.empty(); });
-  if (!named) return {};
-  const Solution& all_on = solved.solution;
-  out.first_vertex.assign(all_on.vertex_states.size() + 1, 0);
-  for (size_t p = 0; p < all_on.vertex_states.size(); ++p)
-    out.first_vertex[p + 1] = out.first_vertex[p] + all_on.vertex_states[p].size();
-  if (out.names.size() == 1) {  // one group: its light is the whole solve's
-    out.radiosity.push_back(vertex_radiosity(all_on, out.first_vertex));
-    out.shots.push_back(solved.shots.count);
-    out.unshot_fraction.push_back(solved.energy.unshot_fraction());
-    return out;
+void assign_light_groups(Solution& sol) {
+  const Hierarchy& h = *sol.hierarchy;
+  const std::vector<std::string> names = light_groups_kept(h);
+  sol.group_count = 0;
+  sol.group_states.clear();
+  sol.object_group.clear();
+  sol.light_group.clear();
+  if (names.empty()) return;
+  if (names.size() > kMaxLightGroups) {
+    throw Error(
+        fmt::format("the scene has {} light groups, more than the {} rad keeps apart; "
+                    "put some of its emitters in the same group",
+                    names.size(), kMaxLightGroups));
   }
-
-  // One state for every group's solve, made once (the scene caches are the solve's own, read
-  // only); each group starts it over from its own emission. One process: under MPI this runs on
-  // the rank that gathered the whole solve.
-  SolverState gs = group_view(solved);
-  // The mesh stays as the whole solve refined it, so every group's vertices are the same.
-  gs.options.subdivision_threshold = std::numeric_limits<float>::infinity();
-  gs.solution.lights.resize(h.lights.size());
-  for (const std::string& group : out.names) {
-    for (size_t i = 0; i < h.objects.size(); ++i) {
-      gs.solution.materials[i] = all_on.materials[i];
-      if (h.objects[i].group != group) gs.solution.materials[i].emission = Vec3(0.0f);
-    }
-    for (size_t i = 0; i < h.lights.size(); ++i) {
-      gs.solution.lights[i] = all_on.light_setting(i);
-      if (h.lights[i].group != group) gs.solution.lights[i].intensity = 0.0f;
-    }
-    gs.energy = start_from_emission(gs.solution);
-    update_unshot_totals(gs.energy, gs.solution, gs.scene.clusters, nullptr);
-    gs.shots = ShotLog{};
-    gs.kept = KeptRayStore{};
-    gs.receivers = Receivers{};
-    gs.stats = SolverStats{};
-    solve(gs, vis, {}, stop);
-    out.radiosity.push_back(vertex_radiosity(gs.solution, out.first_vertex));
-    out.shots.push_back(gs.shots.count);
-    out.unshot_fraction.push_back(gs.energy.unshot_fraction());
-    if (keep_states) {
-      out.states.push_back(
-          {gs.solution.vertex_states, gs.solution.materials, gs.solution.lights, gs.energy});
-    }
-  }
-  return out;
+  auto index = [&](const std::string& g) {
+    const auto at = std::find(names.begin(), names.end(), g);
+    return at == names.end() ? 0u : uint32_t(at - names.begin());
+  };
+  for (const SceneObject& o : h.objects) sol.object_group.push_back(index(o.group));
+  for (const Light& l : h.lights) sol.light_group.push_back(index(l.group));
+  sol.group_count = names.size();
+  sol.group_states.resize(sol.vertex_states.size());
+  for (size_t p = 0; p < sol.vertex_states.size(); ++p)
+    sol.group_states[p].assign(sol.vertex_states[p].size() * sol.group_count, VertexState{});
+  // (A solution not yet started has no vertex states: start_from_emission makes both.)
 }
 
 SolverState group_view(const SolverState& solved) {
@@ -101,13 +69,26 @@ SolverState group_view(const SolverState& solved) {
   return view;
 }
 
-void show_group(SolverState& view, const LightGroupSolution& groups, size_t g) {
-  assert(g < groups.states.size());
-  const LightGroupState& state = groups.states[g];
-  view.solution.vertex_states = state.vertex_states;
-  view.solution.materials = state.materials;
-  view.solution.lights = state.lights;
-  view.energy = state.energy;
+void show_group(SolverState& view, const SolverState& solved, size_t g) {
+  const Solution& whole = solved.solution;
+  assert(g < whole.group_count);
+  Solution& sol = view.solution;
+  const size_t n = whole.group_count;
+  for (size_t p = 0; p < whole.vertex_states.size(); ++p) {
+    for (size_t v = 0; v < whole.vertex_states[p].size(); ++v)
+      sol.vertex_states[p][v] = whole.group_states[p][v * n + g];
+  }
+  for (size_t i = 0; i < sol.materials.size(); ++i) {
+    sol.materials[i] = whole.materials[i];
+    if (whole.object_group[i] != g) sol.materials[i].emission = Vec3(0.0f);
+  }
+  sol.lights.resize(whole.hierarchy->lights.size());
+  for (size_t i = 0; i < sol.lights.size(); ++i) {
+    sol.lights[i] = whole.light_setting(i);
+    if (whole.light_group[i] != g) sol.lights[i].intensity = 0.0f;
+  }
+  sol.group_count = 0;
+  sol.group_states.clear();
 }
 
 }  // namespace rad

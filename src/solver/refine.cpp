@@ -21,6 +21,20 @@ Vec3 to_reflectance(const Vec3& unshot, const Vec3& ends, const Vec3& own) {
   return u;
 }
 
+// update(a, b, mid, g) on the states of vertices a, b and mid of polygon p: the whole's (g = -1),
+// then each light group's (g = 0, 1, ...), which new vertices get by the same rules.
+template <typename Update>
+void whole_and_groups(Solution& sol, uint32_t p, uint32_t a, uint32_t b, uint32_t mid,
+                      Update&& update) {
+  std::vector<VertexState>& vs = sol.vertex_states[p];
+  update(vs[a], vs[b], vs[mid], -1);
+  const size_t n = sol.group_count;
+  for (size_t g = 0; g < n; ++g) {
+    std::vector<VertexState>& gs = sol.group_states[p];
+    update(gs[a * n + g], gs[b * n + g], gs[mid * n + g], int(g));
+  }
+}
+
 struct ExactVertex {
   uint32_t polygon, vertex, a, b;
   // A vertex shared with another polygon's (solver_state.h) copies it instead of gathering.
@@ -81,16 +95,24 @@ std::vector<uint32_t> needing_refinement(const SolverOptions& options, const Ene
 
 Vec3 regather_shots(const Hierarchy& h, const Clusters& clusters, const ShotLog& shots,
                     const Vec3& x, uint32_t polygon, bool major_only, const VisibilityBackend& vis,
-                    const GatherSettings& settings, GatherScratch& scratch, Vec3* major_part) {
+                    const GatherSettings& settings, GatherScratch& scratch, Vec3* major_part,
+                    std::span<Vec3> group_all, std::span<Vec3> group_major) {
   const Triangles& tris = h.triangles;
   const Vec3 n = tris.normal[polygon], centroid = tris.centroid(polygon);
   const GatherSettings own = receiver_settings(settings, h, polygon);
+  const size_t groups = std::max(group_all.size(), group_major.size());
+  const std::span<Vec3> gain = group_gains(scratch, groups);
+  std::fill(group_all.begin(), group_all.end(), Vec3(0.0f));
+  std::fill(group_major.begin(), group_major.end(), Vec3(0.0f));
   Vec3 all(0.0f), major(0.0f);
   for (const ShotSource& k : shots.sources) {
     if ((major_only && !k.major) || !may_receive(h, clusters, polygon, k)) continue;
-    const Vec3 g = gather_from_source(x, n, centroid, k, vis, own, scratch);
+    const Vec3 g = gather_from_source(x, n, centroid, k, vis, own, scratch, nullptr, gain);
     all += g;
     if (k.major) major += g;
+    for (size_t i = 0; i < group_all.size(); ++i) group_all[i] += gain[i];
+    if (k.major)
+      for (size_t i = 0; i < group_major.size(); ++i) group_major[i] += gain[i];
   }
   if (major_part) *major_part = major;
   return all;
@@ -114,6 +136,7 @@ void refine(RefineContext ctx, std::span<const uint32_t> polygons, const Receive
   const size_t np = polygons.size();
   if (np == 0) return;
   const bool all_exact = ctx.options.midpoints == MidpointRule::Exact || !after_shot;
+  const size_t groups = ctx.solution.group_count;
 
   std::vector<std::vector<uint32_t>> check(np), next(np);
   std::vector<std::vector<ExactVertex>> exact(np);
@@ -153,6 +176,7 @@ void refine(RefineContext ctx, std::span<const uint32_t> polygons, const Receive
           NewMidpoint created[3];
           const int n = split_element(m, e, created);
           vs.resize(m.vertex_count());
+          if (groups > 0) ctx.solution.group_states[p].resize(m.vertex_count() * groups);
           if (!factors.empty()) {
             factors.resize(m.vertex_count());
             for (int k = 0; k < n; ++k) {
@@ -171,17 +195,19 @@ void refine(RefineContext ctx, std::span<const uint32_t> polygons, const Receive
             if (computed) {
               exact[i].push_back({p, c.vertex, c.a, c.b});
             } else {
-              const VertexState &a = vs[c.a], &b = vs[c.b];
-              VertexState& mid = vs[c.vertex];
-              mid.irradiance = (a.irradiance + b.irradiance) * 0.5f;
-              mid.unshot = (a.unshot + b.unshot) * 0.5f;
-              if (!factors.empty()) {
-                mid.unshot = to_reflectance(
-                    mid.unshot, (factors[c.a].reflectance + factors[c.b].reflectance) * 0.5f,
-                    factors[c.vertex].reflectance);
-              }
-              mid.last_gain = (a.last_gain + b.last_gain) * 0.5f;
-              mid.major = (a.major + b.major) * 0.5f;
+              auto interpolate = [&](const VertexState& a, const VertexState& b, VertexState& mid,
+                                     int) {
+                mid.irradiance = (a.irradiance + b.irradiance) * 0.5f;
+                mid.unshot = (a.unshot + b.unshot) * 0.5f;
+                if (!factors.empty()) {
+                  mid.unshot = to_reflectance(
+                      mid.unshot, (factors[c.a].reflectance + factors[c.b].reflectance) * 0.5f,
+                      factors[c.vertex].reflectance);
+                }
+                mid.last_gain = (a.last_gain + b.last_gain) * 0.5f;
+                mid.major = (a.major + b.major) * 0.5f;
+              };
+              whole_and_groups(ctx.solution, p, c.a, c.b, c.vertex, interpolate);
               ++interpolated[i];
             }
           }
@@ -243,6 +269,10 @@ void refine(RefineContext ctx, std::span<const uint32_t> polygons, const Receive
       VertexState& to = ctx.solution.vertex_states[x.polygon][x.vertex];
       to.irradiance = from.irradiance, to.unshot = from.unshot;
       to.last_gain = from.last_gain, to.major = from.major;
+      for (size_t g = 0; g < groups; ++g) {
+        ctx.solution.group_states[x.polygon][x.vertex * groups + g] =
+            ctx.solution.group_states[size_t(x.from_polygon)][x.from_vertex * groups + g];
+      }
     });
     ctx.stats.exact_midpoints += flat.size();
     any = false;
@@ -266,71 +296,86 @@ void refine_after_shot(RefineContext ctx, const Receivers& reached, const ShotSo
   const Hierarchy& h = *ctx.solution.hierarchy;
   const Triangles& tris = h.triangles;
   const GatherSettings settings = gather_settings(ctx.options, ctx.scene, ctx.energy);
+  const size_t groups = ctx.solution.group_count;
   refine(ctx, polygons, &reached, vis, [&](const ExactVertex& x, GatherScratch& sc) {
     const Vec3 at = ctx.scene.buried.gather_point(
         x.polygon, x.vertex, ctx.solution.mesh.polygons[x.polygon].positions[x.vertex]);
-    std::vector<VertexState>& vs = ctx.solution.vertex_states[x.polygon];
     const Vec3 rho = ctx.solution.reflectance(x.polygon, x.vertex);
     const Vec3 rho_a = ctx.solution.reflectance(x.polygon, x.a);
     const Vec3 rho_b = ctx.solution.reflectance(x.polygon, x.b);
-    const VertexState &a = vs[x.a], &b = vs[x.b];
-    VertexState& mid = vs[x.vertex];
-    const Vec3 dh = gather_from_source(at, tris.normal[x.polygon], tris.centroid(x.polygon), src,
-                                       vis, receiver_settings(settings, h, x.polygon), sc);
-    Vec3 major_h(0.0f);
+    // The major shots first: regather_shots uses the scratch's group_gain for each.
+    sc.group_major.resize(groups);
+    Vec3 whole_major_h(0.0f);
     regather_shots(h, ctx.scene.clusters, ctx.shots, at, x.polygon, true, vis, settings, sc,
-                   &major_h);
-    // Earlier minor shots: interpolated from the edge's ends (design §5).
-    Vec3 minor_a = a.irradiance - a.last_gain - a.major;
-    Vec3 minor_b = b.irradiance - b.last_gain - b.major;
-    if (major) {  // the ends' major part includes this shot's
-      minor_a += a.last_gain;
-      minor_b += b.last_gain;
-    }
-    const Vec3 earlier_h = (minor_a + minor_b) * 0.5f + major_h;
-    // A buried vertex's unshot radiosity holds none of its gains (buried_vertices.h).
-    const Vec3 a_u =
-        ctx.scene.buried.is_moved(x.polygon, x.a) ? a.unshot : a.unshot - rho_a * a.last_gain;
-    const Vec3 b_u =
-        ctx.scene.buried.is_moved(x.polygon, x.b) ? b.unshot : b.unshot - rho_b * b.last_gain;
+                   &whole_major_h, {}, sc.group_major);
+    const Vec3 whole_dh = gather_from_source(at, tris.normal[x.polygon], tris.centroid(x.polygon),
+                                             src, vis, receiver_settings(settings, h, x.polygon),
+                                             sc, nullptr, group_gains(sc, groups));
     const std::vector<TextureFactors>& factors = ctx.solution.texture_factors[x.polygon];
-    const Vec3 earlier_u =
-        factors.empty()
-            ? (a_u + b_u) * 0.5f
-            : to_reflectance((a_u + b_u) * 0.5f,
-                             (factors[x.a].reflectance + factors[x.b].reflectance) * 0.5f,
-                             factors[x.vertex].reflectance);
     const bool buried = ctx.scene.buried.is_moved(x.polygon, x.vertex);
-    mid.irradiance = earlier_h + dh;
-    mid.unshot = buried ? earlier_u : earlier_u + rho * dh;
-    mid.last_gain = dh;
-    mid.major = major ? major_h + dh : major_h;
+    // The midpoint's state from its edge's ends, the shot's gain dh there and the major shots'
+    // gains major_h there: the whole's, and each light group's alike.
+    auto update = [&](const VertexState& a, const VertexState& b, VertexState& mid, int g) {
+      const Vec3 dh = g < 0 ? whole_dh : sc.group_gain[size_t(g)];
+      const Vec3 major_h = g < 0 ? whole_major_h : sc.group_major[size_t(g)];
+      // Earlier minor shots: interpolated from the edge's ends (design §5).
+      Vec3 minor_a = a.irradiance - a.last_gain - a.major;
+      Vec3 minor_b = b.irradiance - b.last_gain - b.major;
+      if (major) {  // the ends' major part includes this shot's
+        minor_a += a.last_gain;
+        minor_b += b.last_gain;
+      }
+      const Vec3 earlier_h = (minor_a + minor_b) * 0.5f + major_h;
+      // A buried vertex's unshot radiosity holds none of its gains (buried_vertices.h).
+      const Vec3 a_u =
+          ctx.scene.buried.is_moved(x.polygon, x.a) ? a.unshot : a.unshot - rho_a * a.last_gain;
+      const Vec3 b_u =
+          ctx.scene.buried.is_moved(x.polygon, x.b) ? b.unshot : b.unshot - rho_b * b.last_gain;
+      const Vec3 earlier_u =
+          factors.empty()
+              ? (a_u + b_u) * 0.5f
+              : to_reflectance((a_u + b_u) * 0.5f,
+                               (factors[x.a].reflectance + factors[x.b].reflectance) * 0.5f,
+                               factors[x.vertex].reflectance);
+      mid.irradiance = earlier_h + dh;
+      mid.unshot = buried ? earlier_u : earlier_u + rho * dh;
+      mid.last_gain = dh;
+      mid.major = major ? major_h + dh : major_h;
+    };
+    whole_and_groups(ctx.solution, x.polygon, x.a, x.b, x.vertex, update);
   });
 }
 
 void refine_after_edit(RefineContext ctx, const Vec3& d_rho, const VisibilityBackend& vis,
                        std::span<const uint32_t> polygons) {
   const Hierarchy& h = *ctx.solution.hierarchy;
+  const size_t groups = ctx.solution.group_count;
   const GatherSettings settings = gather_settings(ctx.options, ctx.scene, ctx.energy);
   refine(ctx, needing_refinement(ctx.options, ctx.energy, ctx.scene, ctx.solution, polygons),
          nullptr, vis, [&](const ExactVertex& x, GatherScratch& sc) {
-           std::vector<VertexState>& vs = ctx.solution.vertex_states[x.polygon];
-           const VertexState &a = vs[x.a], &b = vs[x.b];
-           VertexState& mid = vs[x.vertex];
            // Every earlier shot gathered again: H exact.
            const Vec3 at = ctx.scene.buried.gather_point(
                x.polygon, x.vertex, ctx.solution.mesh.polygons[x.polygon].positions[x.vertex]);
-           mid.irradiance = regather_shots(h, ctx.scene.clusters, ctx.shots, at, x.polygon, false,
-                                           vis, settings, sc, &mid.major);
+           Vec3 major_h(0.0f);
+           sc.group_all.resize(groups), sc.group_major.resize(groups);
+           const Vec3 all_h =
+               regather_shots(h, ctx.scene.clusters, ctx.shots, at, x.polygon, false, vis, settings,
+                              sc, &major_h, sc.group_all, sc.group_major);
            // Unshot: the edit's part d_rho * H exact, the rest interpolated (transient).
            const std::vector<TextureFactors>& f = ctx.solution.texture_factors[x.polygon];
            auto d_rho_at = [&](uint32_t v) { return f.empty() ? d_rho : d_rho * f[v].reflectance; };
-           mid.unshot =
-               (a.unshot - d_rho_at(x.a) * a.irradiance + b.unshot - d_rho_at(x.b) * b.irradiance) *
-               0.5f;
-           if (!ctx.scene.buried.is_moved(x.polygon, x.vertex))
-             mid.unshot += d_rho_at(x.vertex) * mid.irradiance;
-           mid.last_gain = Vec3(0.0f);
+           const bool buried = ctx.scene.buried.is_moved(x.polygon, x.vertex);
+           // The whole's state and each light group's alike.
+           auto update = [&](const VertexState& a, const VertexState& b, VertexState& mid, int g) {
+             mid.irradiance = g < 0 ? all_h : sc.group_all[size_t(g)];
+             mid.major = g < 0 ? major_h : sc.group_major[size_t(g)];
+             mid.unshot = (a.unshot - d_rho_at(x.a) * a.irradiance + b.unshot -
+                           d_rho_at(x.b) * b.irradiance) *
+                          0.5f;
+             if (!buried) mid.unshot += d_rho_at(x.vertex) * mid.irradiance;
+             mid.last_gain = Vec3(0.0f);
+           };
+           whole_and_groups(ctx.solution, x.polygon, x.a, x.b, x.vertex, update);
          });
 }
 

@@ -30,10 +30,12 @@ std::vector<uint32_t> needing_refinement(const SolverOptions& options, const Ene
 
 /// The shots of shots.sources gathered again at point x of `polygon` of `h` (all, or the major
 /// ones only; those that may_receive passes over skipped); the major ones' part is also written
-/// to *major_part when given.
+/// to *major_part when given. With light groups, `group_all` and `group_major` (each empty, or
+/// one per group) get each group's part of the two.
 Vec3 regather_shots(const Hierarchy& h, const Clusters& clusters, const ShotLog& shots,
                     const Vec3& x, uint32_t polygon, bool major_only, const VisibilityBackend& vis,
-                    const GatherSettings& settings, GatherScratch& scratch, Vec3* major_part);
+                    const GatherSettings& settings, GatherScratch& scratch, Vec3* major_part,
+                    std::span<Vec3> group_all = {}, std::span<Vec3> group_major = {});
 
 /// The parts of the solver state a refinement reads (const) and writes; a view, passed by value.
 struct RefineContext {

@@ -110,7 +110,9 @@ const Receivers& shoot_to_receivers(ShotContext ctx, const ShotSource& src,
                      : prepare_kept_rays(ctx.kept, src, uint64_t(ctx.shots.count) + 1, receivers,
                                          ctx.solution.mesh, ctx.scene.clusters.size(),
                                          ctx.options.kept_rays_bytes);
+  const size_t groups = ctx.solution.group_count;
   parallel_gather(work.size(), 1, ctx.stats, [&](size_t begin, size_t end, GatherScratch& sc) {
+    const std::span<Vec3> group_gain = group_gains(sc, groups);
     for (size_t i = begin; i != end; ++i) {
       const VertexRange& w = work[i];
       const uint32_t p = w.polygon;
@@ -131,10 +133,14 @@ const Receivers& shoot_to_receivers(ShotContext ctx, const ShotSource& src,
         VertexState& x = vs[v];
         const VertexRays rays = kept ? vertex_rays(*kept, w.receiver, v) : VertexRays{};
         const Vec3 at = ctx.scene.buried.gather_point(p, v, mesh.positions[v]);
-        const Vec3 dh =
-            gather_from_source(at, n, centroid, src, vis, own, sc, kept ? &rays : nullptr);
-        x.receive(dh, factors.empty() ? rho : rho * factors[v].reflectance, major,
-                  at == mesh.positions[v]);
+        const Vec3 dh = gather_from_source(at, n, centroid, src, vis, own, sc,
+                                           kept ? &rays : nullptr, group_gain);
+        const Vec3 rho_v = factors.empty() ? rho : rho * factors[v].reflectance;
+        const bool shoots = at == mesh.positions[v];
+        x.receive(dh, rho_v, major, shoots);
+        for (size_t g = 0; g < groups; ++g) {
+          ctx.solution.group_states[p][v * groups + g].receive(group_gain[g], rho_v, major, shoots);
+        }
       }
     }
   });
@@ -148,8 +154,14 @@ const Receivers& shoot_to_receivers(ShotContext ctx, const ShotSource& src,
       const Vec3 dh = ctx.solution.vertex_states[copy.from_polygon][copy.from_vertex].last_gain;
       // Whether it shoots is the copy's own (each polygon probes toward its own centroid, so a
       // shared vertex may be buried for one and not the other): what refinement reads back.
-      vs[copy.vertex].receive(dh, ctx.solution.reflectance(p, copy.vertex), major,
-                              !ctx.scene.buried.is_moved(p, copy.vertex));
+      const Vec3 rho = ctx.solution.reflectance(p, copy.vertex);
+      const bool shoots = !ctx.scene.buried.is_moved(p, copy.vertex);
+      vs[copy.vertex].receive(dh, rho, major, shoots);
+      for (size_t g = 0; g < groups; ++g) {
+        const size_t from = size_t(copy.from_vertex) * groups + g;
+        ctx.solution.group_states[p][size_t(copy.vertex) * groups + g].receive(
+            ctx.solution.group_states[copy.from_polygon][from].last_gain, rho, major, shoots);
+      }
     }
   });
   return ctx.receivers;

@@ -1,6 +1,7 @@
 #include "solver/shot_source.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -186,8 +187,22 @@ ShotSource make_cluster_source(const SolverState& s, int32_t c, Value value) {
 }  // namespace
 
 ShotSource make_shot_source(const SolverState& s, int32_t c) {
-  return make_cluster_source(
+  ShotSource src = make_cluster_source(
       s, c, [&](uint32_t t, uint32_t v) { return s.solution.vertex_states[t][v].unshot; });
+  // Each light group's share, frozen the same way: the strata and lanes depend on the points
+  // alone, so the shares' lanes line up with the source's.
+  const size_t n = s.solution.group_count;
+  for (size_t g = 0; g < n; ++g) {
+    ShotSource part = make_cluster_source(
+        s, c, [&](uint32_t t, uint32_t v) { return s.solution.group_states[t][v * n + g].unshot; });
+    assert(part.sample.size() == src.sample.size());
+    assert(part.fine_sample.size() == src.fine_sample.size());
+    src.groups.push_back({std::move(part.sample.r), std::move(part.sample.g),
+                          std::move(part.sample.b), std::move(part.fine_sample.r),
+                          std::move(part.fine_sample.g), std::move(part.fine_sample.b),
+                          part.mean_unshot});
+  }
+  return src;
 }
 
 ShotSource make_emission_source(const SolverState& s, int32_t c) {

@@ -34,6 +34,15 @@ struct SampleLanes {
   Vec3 value(size_t i) const { return {r[i], g[i], b[i]}; }
 };
 
+/// With light groups (light_groups.h): one group's part of what a source shoots, per lane of
+/// its `sample` and of its `fine_sample` (whose points they share), and its mean. The groups'
+/// values add up to the source's.
+struct GroupShare {
+  std::vector<float> r, g, b;
+  std::vector<float> fine_r, fine_g, fine_b;
+  Vec3 mean_unshot{0.0f};
+};
+
 /// A cluster (solver/clusters.h) frozen as the source of one shot: its outline, its samples and
 /// their unshot radiosity. Or a light of the scene (light >= 0, cluster -1): a point, spot or
 /// directional light (scene/light.h), whose gain at a point is its illuminance there
@@ -45,6 +54,7 @@ struct ShotSource {
   // itself, and for the sun the directions toward points of its disc, spread by area, and how
   // far its shadow rays go (past the scene's bounds).
   int32_t light = -1;
+  int32_t light_group = -1;  // with light groups: the light's group
   Vec3 light_colour{0.0f};
   const Light* emitter = nullptr;
   std::vector<Vec3> sun_directions;
@@ -66,6 +76,9 @@ struct ShotSource {
   std::vector<float> end_x, end_y, end_z;
   Vec3 mean_unshot{0.0f};  // area-weighted mean unshot radiosity over the samples
   bool major = false;      // carried >= major_shot_fraction of the emitted energy
+  // With light groups, a cluster's share per group (the solution's group count of them); the
+  // rays and every choice of the shot are made from the source's whole values.
+  std::vector<GroupShare> groups;
   // Near field: receivers closer to the source than `near_distance` weight its unshot radiosity
   // over the (about 16x more) fine samples, the points each stratum was made of (no more rays:
   // each takes the visibility of its stratum's sample), so a big source's variation is not read

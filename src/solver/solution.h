@@ -47,6 +47,13 @@ struct Solution {
   std::vector<Material> materials;
   /// Per light of the hierarchy (Hierarchy::lights): its colour and intensity, as edited.
   std::vector<LightSetting> lights;
+  /// Light groups (light_groups.h): how many (0 for a scene of fewer than two), and per polygon,
+  /// per vertex v and group g, at [v * group_count + g], the vertex's state under that group's
+  /// light alone, kept as vertex_states keeps the whole's (empty without groups).
+  size_t group_count = 0;
+  std::vector<std::vector<VertexState>> group_states;
+  /// With light groups: per object of the hierarchy and per light, its group's index.
+  std::vector<uint32_t> object_group, light_group;
   /// Per polygon that reflects or emits by a texture, per vertex: its texture factors
   /// (solver/texture_factors.h), fixed when the vertex is made; empty for other polygons.
   std::vector<std::vector<TextureFactors>> texture_factors;
@@ -78,6 +85,18 @@ struct Solution {
   /// Radiosity B = E + rho * H of vertex v of polygon p.
   Vec3 radiosity(size_t p, uint32_t v) const {
     return emission(p, v) + reflectance(p, v) * vertex_states[p][v].irradiance;
+  }
+  /// Polygon p's vertex states under each light group (none without groups).
+  const std::vector<VertexState>& group_states_of(size_t p) const {
+    static const std::vector<VertexState> none;
+    return group_count > 0 ? group_states[p] : none;
+  }
+  /// Group g's light alone at vertex v of polygon p: its radiosity B_g = E_g + rho * H_g, E_g
+  /// the vertex's emission when its object is in group g.
+  Vec3 group_radiosity(size_t g, size_t p, uint32_t v) const {
+    const Vec3 e =
+        object_group[size_t(hierarchy->triangles.object[p])] == g ? emission(p, v) : Vec3(0.0f);
+    return e + reflectance(p, v) * group_states[p][v * group_count + g].irradiance;
   }
 };
 

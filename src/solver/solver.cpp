@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <span>
@@ -155,6 +156,13 @@ ShotSource freeze_source(SolverState& s, size_t c, double energy, double& shot) 
   if (overshoot) set_unshot(over, false);
   ShotSource src = make_shot_source(s, int32_t(c));
   set_unshot(-over, true);
+  // Each light group's share goes with the source (light groups never overshoot).
+  assert(!overshoot || s.solution.group_count == 0);
+  if (s.solution.group_count > 0) {
+    for (uint32_t j = clusters.first[c]; j < clusters.first[c + 1]; ++j) {
+      for (VertexState& v : s.solution.group_states[clusters.polygons[j]]) v.unshot = Vec3(0.0f);
+    }
+  }
   std::vector<UnshotEnergy> left;
   for (uint32_t j = clusters.first[c]; j < clusters.first[c + 1]; ++j) {
     left.push_back(overshoot ? polygon_unshot_energy(s.solution, clusters.polygons[j])
@@ -228,6 +236,7 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   if (light != s.energy.light_unshot.end()) {
     const int32_t i = int32_t(light - s.energy.light_unshot.begin());
     src = make_light_source(s.solution.hierarchy->lights, i, *light, s.solution.hierarchy->bounds);
+    if (s.solution.group_count > 0) src.light_group = int32_t(s.solution.light_group[size_t(i)]);
     *light = Vec3(0.0f);
   } else {
     shooter = choose_shooter(s);

@@ -8,6 +8,7 @@
 
 #include "mesh/sample_points.h"
 #include "mesh/subdivide.h"
+#include "solver/light_groups.h"
 #include "solver/light_source.h"
 #include "solver/texture_factors.h"
 #include "visibility/segment.h"
@@ -52,12 +53,20 @@ EnergyBalance start_from_emission(Solution& sol) {
   energy.unshot_energy.assign(h.triangles.size(), UnshotEnergy{});
   double total_area = 0.0;
   sol.vertex_states.resize(h.triangles.size());
+  sol.group_states.resize(sol.group_count > 0 ? h.triangles.size() : 0);
   for (size_t t = 0; t < h.triangles.size(); ++t) {
     const Vec3 e = sol.material_of(t).emission;
     sol.vertex_states[t].assign(sol.mesh.polygons[t].vertex_count(), VertexState{.unshot = e});
     if (!sol.texture_factors[t].empty()) {
       for (uint32_t v = 0; v < sol.vertex_states[t].size(); ++v)
         sol.vertex_states[t][v].unshot = sol.emission(t, v);
+    }
+    // With light groups, a vertex's emission is its object's group's light.
+    if (sol.group_count > 0) {
+      const size_t n = sol.group_count, g = sol.object_group[size_t(h.triangles.object[t])];
+      sol.group_states[t].assign(sol.vertex_states[t].size() * n, VertexState{});
+      for (uint32_t v = 0; v < sol.vertex_states[t].size(); ++v)
+        sol.group_states[t][v * n + g].unshot = sol.vertex_states[t][v].unshot;
     }
     energy.unshot_energy[t] = polygon_unshot_energy(sol, t);
     energy.emitted_energy += energy.unshot_energy[t].sum;
@@ -123,6 +132,12 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
           initial_texture_factors(h.triangles, t, sol.object_of(t), sol.mesh.polygons[t]);
     }
   });
+  assign_light_groups(sol);
+  // Overshooting lends a shooter the ambient light it will get back, to be paid back by
+  // whatever light arrives; a light group's loan would be paid back by other groups' light and
+  // its solution left wrong where they cancel. Without it every group's unshot light stays
+  // positive, and the whole converging means each group has.
+  if (sol.group_count > 0) s.options.overshoot = false;
   energy = start_from_emission(sol);
   scene.shadow_offset = shadow_offset(h.bounds);
   assert(options.sample_grid >= 1 && options.max_sample_grid <= 64);

@@ -38,8 +38,9 @@ float scene_size(const Hierarchy& h);
 
 /// Every vertex of `sol`'s mesh back to before the first shot: H = 0 and unshot radiosity = its
 /// emission E (materials as in sol.materials, texture factors included), each light's whole
-/// light (as in sol.lights) still to shoot. Returns the energy bookkeeping of that start
-/// (without the cluster totals: update_unshot_totals).
+/// light (as in sol.lights) still to shoot; with light groups, each group's vertex states the
+/// same with its own emitters' E (assign_light_groups). Returns the energy bookkeeping of that
+/// start (without the cluster totals: update_unshot_totals).
 EnergyBalance start_from_emission(Solution& sol);
 
 /// The state before the first shot: the unsplit mesh, emitters' unshot radiosity = emission.

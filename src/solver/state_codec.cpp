@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solver/light_groups.h"
 #include "solver/light_source.h"
 
 namespace rad {
@@ -67,7 +68,37 @@ void write_shot(ByteWriter& w, const ShotSource& s) {
   w.vec(s.end_x), w.vec(s.end_y), w.vec(s.end_z);
   write_lanes(w, s.fine_sample);
   w.vec(s.fine_group_parent);
+  w.pod(s.light_group);
+  w.pod(uint64_t(s.groups.size()));
+  for (const GroupShare& g : s.groups) {
+    for (const auto* v : {&g.r, &g.g, &g.b, &g.fine_r, &g.fine_g, &g.fine_b}) w.vec(*v);
+    w.pod(g.mean_unshot);
+  }
 }
+
+namespace {
+
+// ShotSource::light_group and ::groups, as write_shot writes them last; their lanes as many
+// as the source's.
+void read_groups(ByteReader& r, ShotSource& s) {
+  s.light_group = r.pod<int32_t>();
+  const uint64_t n = r.pod<uint64_t>();
+  if (n > kMaxLightGroups) r.fail("more light groups than a scene can hold");
+  s.groups.resize(size_t(n));
+  for (GroupShare& g : s.groups) {
+    for (auto* v : {&g.r, &g.g, &g.b}) {
+      r.vec(*v);
+      if (v->size() != s.sample.size()) r.fail("a light group's share unlike its samples");
+    }
+    for (auto* v : {&g.fine_r, &g.fine_g, &g.fine_b}) {
+      r.vec(*v);
+      if (v->size() != s.fine_sample.size()) r.fail("a light group's share unlike its samples");
+    }
+    g.mean_unshot = r.pod<Vec3>();
+  }
+}
+
+}  // namespace
 
 ShotSource read_shot(ByteReader& r, size_t clusters, const std::vector<Light>& lights,
                      const Aabb& bounds) {
@@ -86,6 +117,10 @@ ShotSource read_shot(ByteReader& r, size_t clusters, const std::vector<Light>& l
     read_lanes(r, lanes);
     std::vector<uint32_t> parents;
     r.vec(parents);
+    ShotSource empty;
+    read_groups(r, empty);
+    if (!empty.groups.empty()) r.fail("a light's shot with a cluster's light groups");
+    s.light_group = empty.light_group;
     return s;
   }
   ShotSource s;
@@ -120,14 +155,17 @@ ShotSource read_shot(ByteReader& r, size_t clusters, const std::vector<Light>& l
   for (uint32_t g : s.fine_group_parent) {
     if (g >= s.sample_count) r.fail("a fine sample group of no sample");
   }
+  read_groups(r, s);
   return s;
 }
 
 void write_polygon(ByteWriter& w, const PolygonMesh& p, const std::vector<VertexState>& states,
+                   const std::vector<VertexState>& group_states,
                    const std::vector<TextureFactors>& texture_factors,
                    const std::vector<VertexCopy>& copies) {
   w.vec(p.positions);
   w.vec(states);
+  w.vec(group_states);
   w.vec(texture_factors);
   w.vec(p.elements);
   // Sorted, so equal states write equal files (the map's order depends on its history).
@@ -143,10 +181,12 @@ void write_polygon(ByteWriter& w, const PolygonMesh& p, const std::vector<Vertex
 }
 
 void read_polygon(ByteReader& r, PolygonMesh& p, std::vector<VertexState>& states,
+                  std::vector<VertexState>& group_states,
                   std::vector<TextureFactors>& texture_factors, std::vector<VertexCopy>& copies,
-                  size_t polygons, bool textured) {
+                  size_t polygons, bool textured, size_t group_count) {
   r.vec(p.positions);
   r.vec(states);
+  r.vec(group_states);
   r.vec(texture_factors);
   r.vec(p.elements);
   std::vector<uint64_t> keys;
@@ -158,6 +198,8 @@ void read_polygon(ByteReader& r, PolygonMesh& p, std::vector<VertexState>& state
   const size_t nv = p.positions.size(), ne = p.elements.size();
   if (nv < 3 || ne < 1) r.fail("a polygon without its triangle");
   if (states.size() != nv) r.fail("vertex states not one per vertex");
+  if (group_states.size() != nv * group_count)
+    r.fail("light groups' vertex states not one per vertex and group");
   if (texture_factors.size() != (textured ? nv : 0))
     r.fail(textured ? "texture factors not one per vertex" : "texture factors of no texture");
   for (size_t e = 0; e < ne; ++e) {

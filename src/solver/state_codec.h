@@ -79,16 +79,19 @@ void write_shot(ByteWriter& w, const ShotSource& s);
 ShotSource read_shot(ByteReader& r, size_t clusters, const std::vector<Light>& lights,
                      const Aabb& bounds);
 
-/// A polygon's mesh, its vertex states, its texture factors (solution.h) and its vertices that
-/// copy another's gain (solver_state.h).
+/// A polygon's mesh, its vertex states and its light groups' (solution.h), its texture factors
+/// and its vertices that copy another's gain (solver_state.h).
 void write_polygon(ByteWriter& w, const PolygonMesh& p, const std::vector<VertexState>& states,
+                   const std::vector<VertexState>& group_states,
                    const std::vector<TextureFactors>& texture_factors,
                    const std::vector<VertexCopy>& copies);
-/// Throws rad::Error when an index of the record is out of range or `textured` differs from
-/// whether it has texture factors (a copy's vertex in the polygon it copies from is the caller's
-/// to check, once every polygon is read).
+/// Throws rad::Error when an index of the record is out of range, `textured` differs from
+/// whether it has texture factors, or its light groups' states are not `group_count` per vertex
+/// (a copy's vertex in the polygon it copies from is the caller's to check, once every polygon
+/// is read).
 void read_polygon(ByteReader& r, PolygonMesh& p, std::vector<VertexState>& states,
+                  std::vector<VertexState>& group_states,
                   std::vector<TextureFactors>& texture_factors, std::vector<VertexCopy>& copies,
-                  size_t polygons, bool textured);
+                  size_t polygons, bool textured, size_t group_count);
 
 }  // namespace rad

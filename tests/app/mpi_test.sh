@@ -20,7 +20,8 @@ same_bytes() {
   "$rad" convert "$scenes/cornell_box.des" "$d/cornell.obj" -q || fail "convert"
   # name|ranks|scene|options (1, 2, 3 and 4 ranks): nested objects and OFF files, Lights lists,
   # a run without overshooting, a model with its automatic hierarchy, a run to convergence
-  # (the stop test on exact sums), and point lights (every rank shoots each).
+  # (the stop test on exact sums), point lights (every rank shoots each), and light groups (the
+  # groups' shares go with every shot to every rank, their states come back with the polygons).
   local runs=(
     "original|1 2 4|$scenes/original_style.des|--max-shots 30"
     "building|2 3|$d/building.des|--max-shots 60"
@@ -28,6 +29,7 @@ same_bytes() {
     "model|3|$d/cornell.obj|--max-shots 20"
     "converged|2|$scenes/cornell_box.des|--converge 0.03"
     "lights|2|$d/lit.des|--max-shots 40"
+    "groups|2 3|$scenes/cornell_box_groups.des|--max-shots 40"
   )
   for run in "${runs[@]}"; do
     IFS='|' read -r name ranks scene opts <<<"$run"

@@ -122,6 +122,17 @@ TEST_F(Requests, ExposureTakesStopsOrARefit) {
             "nothing to change: give 'stops' or 'refit': true");
 }
 
+TEST_F(Requests, DimmersTakeOneFactorPerLightGroup) {
+  EXPECT_EQ(parse_dimmers_request(R"({"dimmers": [0, 1.5]})", 2), (std::vector<float>{0.0f, 1.5f}));
+  EXPECT_EQ(rejection([] { parse_dimmers_request(R"({"dimmers": [1]})", 2); }),
+            "'dimmers' must be an array of 2 numbers, one per light group");
+  EXPECT_EQ(rejection([] { parse_dimmers_request(R"({"dimmers": [1, -1]})", 2); }),
+            "'dimmers'[1] is -1; it must be in [0, 100]");
+  EXPECT_NE(
+      rejection([] { parse_dimmers_request(R"({"dimmers": []})", 0); }).find("no light groups"),
+      std::string::npos);
+}
+
 TEST_F(Requests, ExportChecksFormatAndParameters) {
   EXPECT_EQ(parse_export_request("glb", {}).format, ExportFormat::Glb);
   const ExportRequest png =

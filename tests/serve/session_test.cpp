@@ -100,6 +100,50 @@ TEST_F(SessionTest, PublishesTheUnlitSceneBeforeItStarts) {
   expect_consistent(*snap);
 }
 
+// With light groups, dimmers mix the groups' solutions into the colours shown: no shot more,
+// and all at 1 shows the whole solve again.
+TEST_F(SessionTest, DimmersMixTheLightGroupsWithoutANewSolve) {
+  Hierarchy grouped = build_hierarchy(testing::serve_scene());
+  grouped.objects[size_t(id("lamp"))].group = "lamp";
+  Light bulb;
+  bulb.name = "bulb", bulb.position = Vec3(0.3f, 0.5f, 0.5f), bulb.intensity = 0.2f;
+  bulb.group = "bulb";
+  grouped.lights = {bulb};
+  const auto grouped_vis = make_visibility_backend(BackendKind::Embree, grouped);
+  Session s(grouped, *grouped_vis, options);
+  s.start();
+  const auto done = wait_for(s, converged);
+  ASSERT_TRUE(done);
+  EXPECT_EQ(done->dimmers, (std::vector<float>{1.0f, 1.0f}));
+  EXPECT_THROW(s.set_dimmers({1.0f}), Error);
+  s.set_dimmers({0.0f, 1.0f});
+  const auto dark =
+      wait_for(s, [](const Snapshot& x) { return !x.dimmers.empty() && x.dimmers[0] == 0.0f; });
+  ASSERT_TRUE(dark);
+  EXPECT_EQ(dark->shots, done->shots);
+  EXPECT_EQ(dark->status, SessionStatus::Converged);
+  auto brightness = [](const Snapshot& x) {
+    double sum = 0.0;
+    for (const Vec3& c : x.colour) sum += mean_component(c);
+    return sum;
+  };
+  EXPECT_LT(brightness(*dark), brightness(*done)) << "the lamp's light is gone";
+  EXPECT_GT(brightness(*dark), 0.0) << "the bulb's stays";
+  // Both off: nothing but the display's ambient term (next to none once converged).
+  s.set_dimmers({0.0f, 0.0f});
+  const auto off =
+      wait_for(s, [](const Snapshot& x) { return !x.dimmers.empty() && x.dimmers[1] == 0.0f; });
+  ASSERT_TRUE(off);
+  EXPECT_LT(brightness(*off), 0.05 * brightness(*done));
+  s.set_dimmers({1.0f, 1.0f});
+  const auto back = wait_for(
+      s,
+      [](const Snapshot& x) { return !x.dimmers.empty() && x.dimmers[0] == 1.0f && x.version > 0; },
+      10s);
+  ASSERT_TRUE(back);
+  EXPECT_TRUE(back->colour == done->colour);
+}
+
 TEST_F(SessionTest, SolvesToConvergenceThenSleeps) {
   Session s(h, *vis, options);
   s.start();

@@ -26,14 +26,16 @@ Hierarchy lit_box() {
   return build_hierarchy(d);
 }
 
-// Every vertex's position and state, as bytes.
+// Every vertex's position and state (and its light groups' states), as bytes.
 std::string all_vertices(const SolverState& s) {
   std::string v;
   for (size_t p = 0; p < s.solution.mesh.polygons.size(); ++p) {
     const std::vector<Vec3>& x = s.solution.mesh.polygons[p].positions;
     const std::vector<VertexState>& st = s.solution.vertex_states[p];
+    const std::vector<VertexState>& g = s.solution.group_states_of(p);
     v.append(reinterpret_cast<const char*>(x.data()), x.size() * sizeof(Vec3));
     v.append(reinterpret_cast<const char*>(st.data()), st.size() * sizeof(VertexState));
+    v.append(reinterpret_cast<const char*>(g.data()), g.size() * sizeof(VertexState));
   }
   return v;
 }
@@ -54,6 +56,21 @@ std::string read_bytes(const fs::path& p) {
 
 fs::path temp_file(const std::string& name) {
   return fs::temp_directory_path() / (name + "-" + std::to_string(getpid()));
+}
+
+// `h` solved for `stop` shots, saved to a checkpoint, read back into a fresh state and solved on
+// with `o`.
+SolverState resumed_after(const Hierarchy& h, const VisibilityBackend& vis, int64_t stop,
+                          const SolverOptions& o) {
+  const fs::path file = temp_file("rad-ckpt-resumed");
+  const SolverState first = solved(h, vis, stop);
+  const uint64_t id = solve_fingerprint(h, first.options, BackendKind::Embree);
+  write_checkpoint(file, first, id);
+  SolverState resumed = make_solver_state(h, o);
+  read_checkpoint(file, resumed, id);
+  solve(resumed, vis);
+  fs::remove(file);
+  return resumed;
 }
 
 TEST(Checkpoint, ResumedSolveEndsBitIdenticalToAnUninterruptedOne) {
@@ -101,14 +118,7 @@ TEST(Checkpoint, ALitSceneResumedBetweenItsLightsShotsEndsBitIdentical) {
   EXPECT_EQ(whole.shots.history[0].source, -1);
   EXPECT_EQ(whole.shots.history[1].source, -2);
   for (const int64_t stop : {1, 5}) {
-    const fs::path file = temp_file("rad-ckpt-lights");
-    const SolverState first = solved(h, *vis, stop);
-    const uint64_t id = solve_fingerprint(h, first.options, BackendKind::Embree);
-    write_checkpoint(file, first, id);
-    SolverState resumed = make_solver_state(h, whole.options);
-    read_checkpoint(file, resumed, id);
-    solve(resumed, *vis);
-    fs::remove(file);
+    const SolverState resumed = resumed_after(h, *vis, stop, whole.options);
     ASSERT_EQ(resumed.shots.count, whole.shots.count);
     EXPECT_TRUE(all_vertices(whole) == all_vertices(resumed)) << "stopped after " << stop;
   }
@@ -117,6 +127,30 @@ TEST(Checkpoint, ALitSceneResumedBetweenItsLightsShotsEndsBitIdentical) {
   moved.lights[1].intensity = 3.0f;
   EXPECT_NE(solve_fingerprint(h, whole.options, BackendKind::Embree),
             solve_fingerprint(moved, whole.options, BackendKind::Embree));
+}
+
+TEST(Checkpoint, ASolveOfLightGroupsResumedEndsBitIdentical) {
+  // The lamp in one group, a light in another, the second light in the default group: every
+  // group's vertex states and the shares of the logged shots survive the file.
+  Hierarchy h = lit_box();
+  for (SceneObject& o : h.objects)
+    if (o.name == "lamp") o.group = "lamp";
+  Light a;
+  a.name = "a", a.position = Vec3(0.3f, 0.5f, 0.8f), a.intensity = 2.0f, a.group = "bulb";
+  Light b = a;
+  b.name = "b", b.position = Vec3(0.8f, 0.8f, 0.9f), b.group = "";
+  h.lights = {a, b};
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  const SolverState whole = solved(h, *vis, 14);
+  ASSERT_EQ(whole.solution.group_count, 3u);
+  const SolverState resumed = resumed_after(h, *vis, 6, whole.options);
+  ASSERT_EQ(resumed.shots.count, whole.shots.count);
+  EXPECT_TRUE(all_vertices(whole) == all_vertices(resumed));
+  // Another grouping of the same light is another solve.
+  Hierarchy regrouped = h;
+  regrouped.lights[1].group = "bulb";
+  EXPECT_NE(solve_fingerprint(h, whole.options, BackendKind::Embree),
+            solve_fingerprint(regrouped, whole.options, BackendKind::Embree));
 }
 
 TEST(Checkpoint, EqualStatesWriteEqualFiles) {

@@ -412,7 +412,7 @@ SceneDescription make_teapot_in_stadium(int stacks) {
 }
 
 SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess, uint64_t seed,
-                               int lights_reach, bool point_lights) {
+                               int lights_reach, bool point_lights, int light_groups) {
   nx = std::max(nx, 1), nz = std::max(nz, 1);
   const int t = std::max(wall_tess, 1), f = std::max(furniture_tess, 1);
   Rng rng(seed);
@@ -471,6 +471,8 @@ SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess
       room.push_back(b.pure(name + ".cabinet", grey(0.4f),
                             box_tris(cab, cab + Vec3(0.6f, 1.8f, 0.8f), 2 * f)));
       const int32_t id = b.group(ObjectKind::Assembly, name, std::move(room));
+      if (light_groups > 0)  // rooms dealt round the groups like cards
+        b.object(id).flags.group = fmt::format("g{}", (i * nz + k) % light_groups);
       if (lights_reach >= 0) {  // it lights itself and the rooms within reach
         ObjectFlags& flags = b.object(id).flags;
         flags.has_lights = true;
@@ -637,7 +639,7 @@ SceneDescription make_furnished_room(int q, uint64_t seed) {
 }
 
 SceneDescription generate_scene(SceneKind kind, uint64_t triangles, uint64_t seed, int lights_reach,
-                                bool point_lights) {
+                                bool point_lights, int light_groups) {
   double n = double(std::max<uint64_t>(triangles, 1));
   switch (kind) {
     case SceneKind::CornellBox:
@@ -656,7 +658,7 @@ SceneDescription generate_scene(SceneKind kind, uint64_t triangles, uint64_t see
       int rooms = std::max(1, int(std::lround(n / 1600.0)));
       int nx = std::max(1, int(std::lround(std::sqrt(double(rooms)))));
       return make_building(nx, std::max(1, (rooms + nx - 1) / nx), 4, 2, seed, lights_reach,
-                           point_lights);
+                           point_lights, light_groups);
     }
     case SceneKind::FurnishedRoom: {
       // The triangle count grows about as q^2: counted at q = 4, then scaled.

@@ -28,9 +28,11 @@ SceneKind parse_scene_kind(std::string_view name);
 /// a few dozen), the same for the same (kind, triangles, seed) on every platform. A building's
 /// rooms get Lights lists (design §8) naming the rooms within `lights_reach` rooms (Chebyshev
 /// distance) when it is 0 or more.
-/// With `point_lights` a building's rooms are lit by point lights instead of emitting panels.
+/// With `point_lights` a building's rooms are lit by point lights instead of emitting panels;
+/// with `light_groups` > 0 they are dealt round that many light groups.
 SceneDescription generate_scene(SceneKind kind, uint64_t triangles, uint64_t seed,
-                                int lights_reach = -1, bool point_lights = false);
+                                int lights_reach = -1, bool point_lights = false,
+                                int light_groups = 0);
 
 /// Cornell box in [0, 1]³ (y up, open front at z = 1): floor, ceiling, back, red left and green
 /// right walls each cut into k × k quads (2k² triangles), a light quad under the ceiling and two
@@ -55,9 +57,11 @@ SceneDescription make_teapot_in_stadium(int stacks);
 /// 4, furniture_tess 2). With lights_reach >= 0 each room lights only itself and the rooms
 /// within that many rooms along each axis (a Lights list). With `point_lights` each room's light
 /// is a point light 0.3 m under the ceiling, of the on-axis intensity of the 1 m² panel of
-/// exitance 8 it replaces (8 / pi cd), not the panel.
+/// exitance 8 it replaces (8 / pi cd), not the panel. With `light_groups` > 0 the rooms are
+/// dealt round that many light groups, g0, g1, ... (room i of the building in g(i mod n)).
 SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess, uint64_t seed,
-                               int lights_reach = -1, bool point_lights = false);
+                               int lights_reach = -1, bool point_lights = false,
+                               int light_groups = 0);
 
 /// A 5 × 2.8 × 4 m room furnished as real models are made (design §10's curved meshes): a sofa
 /// and an armchair of rounded boxes, a coffee table on cylinder legs with a torus, spheres and a

@@ -309,6 +309,40 @@ function buildLights() {
   }
 }
 
+// Light groups: a dimmer per group mixes the groups' solutions into the colours shown, with no
+// new solve (every group's light, every bounce, is solved apart).
+let dimmerEditTime = -Infinity, dimmerTimer = null;
+const dimmers = [], dimmerControls = [];
+function buildGroups() {
+  if (!scene.light_groups || scene.light_groups.length === 0) return;
+  $('groups-section').hidden = false;
+  const groupsGui = new GUI({ container: $('groups'), title: 'Light groups', width: 300 });
+  scene.light_groups.forEach((name, g) => {
+    dimmers.push({ dimmer: 1 });
+    const c = groupsGui.add(dimmers[g], 'dimmer', 0, 4, 0.01).name(name || '(no group)')
+      .onChange(() => {
+        dimmerEditTime = performance.now();
+        if (!dimmerTimer) {
+          dimmerTimer = setTimeout(() => {
+            dimmerTimer = null;
+            post('/api/dimmers', { dimmers: dimmers.map((d) => d.dimmer) });
+          }, 100);
+        }
+      });
+    c.domElement.dataset.control = `group-${g}-dimmer`;
+    dimmerControls.push(c);
+  });
+}
+
+function refreshGroups() {
+  if (!status || !status.dimmers || performance.now() - dimmerEditTime < 1500) return;
+  status.dimmers.forEach((d, g) => {
+    if (!dimmerControls[g]) return;
+    dimmers[g].dimmer = d;
+    dimmerControls[g].updateDisplay();
+  });
+}
+
 function refreshLights() {
   if (!status || !status.lights || performance.now() - lightEditTime < 1500) return;
   status.lights.forEach((s, i) => {
@@ -401,6 +435,7 @@ function onStatus(s) {
   });
   refreshControls(false);
   refreshLights();
+  refreshGroups();
   drawChart();
 }
 
@@ -482,6 +517,7 @@ async function main() {
   }
   buildTree();
   buildLights();
+  buildGroups();
   resize();
   frameCamera();
   requestAnimationFrame(frame);
