@@ -85,6 +85,7 @@ void write_stats_json(const std::string& path, const RunOptions& run, const Scen
         {"threshold", s.options.subdivision_threshold},
         {"intensity_cut", s.options.intensity_cut},
         {"roulette", s.options.roulette},
+        {"overshoot", s.options.overshoot},  // off with light groups, whatever was asked
         {"converge", s.options.converge},
         {"min_size", s.scene.min_size},
         {"unit", unit}}},
