@@ -15,9 +15,10 @@
 
 namespace rad {
 
-/// The solver's state, part by part. Functions that need one part take that part, so their
-/// signatures say what they read and write; the stepping functions (solver.h, edits.h) take
-/// the whole.
+/// The solver's state, part by part. Functions that need one part take that part, or a view
+/// naming the parts they read (const) and write (ShotContext, RefineContext, EditContext), so
+/// their signatures say what they read and write; the loop that steps the solve (solver.h),
+/// checkpoints and the ranks' distribution take the whole.
 struct SolverState {
   SolverOptions options;
   Solution solution;     // the mesh, each vertex's radiosity, the materials
