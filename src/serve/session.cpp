@@ -298,10 +298,10 @@ void Session::apply(const Edit& edit) {
       rate_mark_time_ = Clock::now();
       notice_ = r->original_materials ? "restarted with the scene's materials and lights"
                                       : "restarted with the current materials and lights";
-    } else if (const auto* x = std::get_if<DimmerEdit>(&edit)) {
-      dimmers_ = x->dimmers;
+    } else if (const auto* d = std::get_if<DimmerEdit>(&edit)) {
+      dimmers_ = d->dimmers;
       std::string list;
-      for (float d : dimmers_) list += fmt::format("{}{:.3g}", list.empty() ? "" : ", ", d);
+      for (float f : dimmers_) list += fmt::format("{}{:.3g}", list.empty() ? "" : ", ", f);
       notice_ = fmt::format("light groups dimmed to {}", list);
     } else if (const auto* x = std::get_if<ExposureEdit>(&edit)) {
       if (x->stops) exposure_stops_ = *x->stops;
@@ -364,29 +364,41 @@ void Session::publish() {
   snap->rays_per_second = rays_per_second_;
   snap->seconds = solve_seconds_;
   snap->build_seconds = publish_seconds_;
-  // Light groups dimmed: the colours shown mix the groups' radiosities, each times its
-  // dimmer, plus the display's ambient term (the groups' sum at 1 is the whole solve).
+  // Light groups: their radiosities in the snapshot's mesh (so its exports hold them), and
+  // dimmed, the colours shown mix them, each with its own part of the ambient term, each times
+  // its dimmer (the groups' sum at 1 is the whole solve).
   const size_t groups = state_.solution.group_count;
   if (dimmers_.size() != groups) dimmers_.assign(groups, 1.0f);
   snap->dimmers = dimmers_;
-  const bool dimmed =
-      std::any_of(dimmers_.begin(), dimmers_.end(), [](float d) { return d != 1.0f; });
-  std::vector<std::vector<Vec3>> group_radiosity;
-  if (dimmed) {
+  if (groups > 0) {
+    snap->mesh.group_names = light_groups_kept(h_);
     for (size_t g = 0; g < groups; ++g) {
-      group_radiosity.push_back(builder_.per_vertex(
+      snap->mesh.group_radiosity.push_back(builder_.per_vertex(
           [&](size_t p, uint32_t v) { return state_.solution.group_radiosity(g, p, v); }));
     }
   }
-  snap->colour.resize(snap->mesh.display.size());
-  for (size_t i = 0; i < snap->mesh.display.size(); ++i) {
-    Vec3 shown = snap->mesh.display[i];
-    if (dimmed) {
-      shown -= snap->mesh.radiosity[i];
-      for (size_t g = 0; g < groups; ++g) shown += group_radiosity[g][i] * dimmers_[g];
+  const bool dimmed =
+      std::any_of(dimmers_.begin(), dimmers_.end(), [](float d) { return d != 1.0f; });
+  std::vector<Vec3> rho, shown;
+  if (dimmed) {
+    if (options_.ambient) {
+      rho = builder_.per_vertex(
+          [&](size_t p, uint32_t v) { return state_.solution.reflectance(p, v); });
     }
-    snap->colour[i] = tone_map(shown, snap->tone);
+    shown.assign(snap->mesh.display.size(), Vec3(0.0f));
+    for (size_t g = 0; g < groups; ++g) {
+      const Vec3 ambient =
+          options_.ambient ? ambient_radiosity(state_.energy, state_.solution, int(g)) : Vec3(0.0f);
+      for (size_t i = 0; i < shown.size(); ++i) {
+        const Vec3 b =
+            snap->mesh.group_radiosity[g][i] + (rho.empty() ? Vec3(0.0f) : rho[i] * ambient);
+        shown[i] += b * dimmers_[g];
+      }
+    }
   }
+  const std::vector<Vec3>& display = dimmed ? shown : snap->mesh.display;
+  snap->colour.resize(display.size());
+  for (size_t i = 0; i < display.size(); ++i) snap->colour[i] = tone_map(display[i], snap->tone);
   const std::vector<int64_t> elements = elements_per_object(state_);
   snap->objects.resize(h_.objects.size());
   for (size_t o = 0; o < h_.objects.size(); ++o) {

@@ -208,9 +208,17 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   }
   const auto logged = r.pod<uint64_t>();
   std::vector<ShotSource> log;
-  for (uint64_t i = 0; i < logged; ++i)
+  const size_t groups = s.solution.group_count;
+  for (uint64_t i = 0; i < logged; ++i) {
     log.push_back(read_shot(r, s.scene.clusters.size(), s.solution.hierarchy->lights,
                             s.solution.hierarchy->bounds));
+    // The gather indexes the groups by these without checking them.
+    const ShotSource& k = log.back();
+    const int32_t light_group =
+        k.light >= 0 && groups > 0 ? int32_t(s.solution.light_group[size_t(k.light)]) : -1;
+    if (k.light_group != light_group || k.groups.size() != (k.light >= 0 ? 0 : groups))
+      r.fail("a logged shot of other light groups");
+  }
   std::vector<double> cluster_cost;
   r.vec(cluster_cost);
   if (cluster_cost.size() > s.scene.clusters.size()) r.fail("more shot costs than clusters");

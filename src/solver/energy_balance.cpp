@@ -255,15 +255,20 @@ float ambient_estimate(const EnergyBalance& e) {
   return float(e.unshot_signed_total / e.total_area * e.interreflection);
 }
 
-Vec3 ambient_radiosity(const EnergyBalance& e, const Solution& s) {
+Vec3 ambient_radiosity(const EnergyBalance& e, const Solution& s, int group) {
   const Hierarchy& h = *s.hierarchy;
   if (e.total_area <= 0.0) return Vec3(0.0f);
+  const size_t n = s.group_count;
+  assert(group < int(n));
   DVec3 unshot(0.0);
   for (size_t t = 0; t < h.triangles.size(); ++t) {
     const std::vector<VertexState>& vs = s.vertex_states[t];
     DVec3 u(0.0);
     for_each_leaf_vertex_sum(
-        s.mesh.polygons[t], [&](uint32_t v) { return vs[v].unshot; },
+        s.mesh.polygons[t],
+        [&](uint32_t v) {
+          return group < 0 ? vs[v].unshot : s.group_states[t][v * n + size_t(group)].unshot;
+        },
         [&](float area, Vec3 sum) { u += DVec3(sum) * (double(area) / 3.0); });
     unshot += u;
   }

@@ -166,7 +166,8 @@ void exact_energy_sums(const EnergyBalance& e, Ranks* ranks,
                        std::span<const std::span<const double>> terms, std::span<double> sums);
 
 /// Cohen et al. 1988 ambient term: the unshot energy spread over the scene and reflected
-/// 1/(1 - mean reflectance) times. For display only; never added to stored radiosity.
-Vec3 ambient_radiosity(const EnergyBalance& e, const Solution& solution);
+/// 1/(1 - mean reflectance) times. For display only; never added to stored radiosity. With
+/// `group` >= 0, the light group's unshot energy alone (the groups' terms add up to the whole's).
+Vec3 ambient_radiosity(const EnergyBalance& e, const Solution& solution, int group = -1);
 
 }  // namespace rad

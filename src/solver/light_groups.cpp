@@ -64,7 +64,15 @@ SolverState group_view(const SolverState& solved) {
   SolverState view;
   view.options = solved.options;
   view.scene = solved.scene;
-  view.solution = solved.solution;
+  // The solution but its groups' states, which show_group reads from `solved`.
+  const Solution& whole = solved.solution;
+  Solution& sol = view.solution;
+  sol.hierarchy = whole.hierarchy;
+  sol.mesh = whole.mesh;
+  sol.vertex_states = whole.vertex_states;
+  sol.materials = whole.materials;
+  sol.lights = whole.lights;
+  sol.texture_factors = whole.texture_factors;
   view.energy = solved.energy;
   return view;
 }
@@ -87,8 +95,6 @@ void show_group(SolverState& view, const SolverState& solved, size_t g) {
     sol.lights[i] = whole.light_setting(i);
     if (whole.light_group[i] != g) sol.lights[i].intensity = 0.0f;
   }
-  sol.group_count = 0;
-  sol.group_states.clear();
 }
 
 }  // namespace rad

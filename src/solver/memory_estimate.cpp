@@ -20,6 +20,8 @@ constexpr double kMidpointBytes = 48.0;
 
 double worst_case_growth_bytes(const SolverState& s) {
   const float split_size = 2.0f * s.scene.min_size;
+  // With light groups a vertex has a state per group too.
+  const double group_bytes = double(s.solution.group_count) * sizeof(VertexState) * kSlack;
   return tbb::parallel_reduce(
       tbb::blocked_range<size_t>(0, s.solution.mesh.polygons.size()), 0.0,
       [&](const tbb::blocked_range<size_t>& r, double bytes) {
@@ -32,7 +34,8 @@ double worst_case_growth_bytes(const SolverState& s) {
             const double side = std::exp2(d);                         // edge segments per side
             const double vertices = (side + 1) * (side + 2) / 2 - 3;  // all new
             const double elements = (std::exp2(2 * d + 2) - 1) / 3 - 1;
-            bytes += vertices * (kVertexBytes + kMidpointBytes) + elements * kElementBytes;
+            bytes +=
+                vertices * (kVertexBytes + kMidpointBytes + group_bytes) + elements * kElementBytes;
           });
         }
         return bytes;
@@ -47,8 +50,10 @@ double shot_log_bytes(const SolverState& s, size_t c) {
   const double n = double(m) * m, fine = 16.0 * n;
   const double outline =
       double(s.scene.clusters.edge_first[c + 1] - s.scene.clusters.edge_first[c]);
+  // Each light group's share: 3 floats per lane of each.
+  const double shares = double(s.solution.group_count) * 4.0 * 3.0 * ((n + 8) + (fine + 8 * n));
   return sizeof(ShotSource) + 4.0 * (13.0 * (n + 8) + 10.0 * (fine + 8 * n) + fine / 8) +
-         24.0 * outline;
+         24.0 * outline + shares;
 }
 
 }  // namespace rad

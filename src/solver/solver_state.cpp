@@ -135,8 +135,8 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   assign_light_groups(sol);
   // Overshooting lends a shooter the ambient light it will get back, to be paid back by
   // whatever light arrives; a light group's loan would be paid back by other groups' light and
-  // its solution left wrong where they cancel. Without it every group's unshot light stays
-  // positive, and the whole converging means each group has.
+  // its solution left wrong where they cancel. Without it (and without edits that lower a
+  // light) every group's unshot light stays positive and at most the whole's.
   if (sol.group_count > 0) s.options.overshoot = false;
   energy = start_from_emission(sol);
   scene.shadow_offset = shadow_offset(h.bounds);

@@ -115,6 +115,10 @@ TEST_F(SessionTest, DimmersMixTheLightGroupsWithoutANewSolve) {
   const auto done = wait_for(s, converged);
   ASSERT_TRUE(done);
   EXPECT_EQ(done->dimmers, (std::vector<float>{1.0f, 1.0f}));
+  // The snapshot's mesh holds the groups, for the exports.
+  EXPECT_EQ(done->mesh.group_names, (std::vector<std::string>{"lamp", "bulb"}));
+  ASSERT_EQ(done->mesh.group_radiosity.size(), 2u);
+  EXPECT_EQ(done->mesh.group_radiosity[1].size(), done->mesh.radiosity.size());
   EXPECT_THROW(s.set_dimmers({1.0f}), Error);
   s.set_dimmers({0.0f, 1.0f});
   const auto dark =

@@ -13,6 +13,7 @@
 #include "hierarchy/hierarchy.h"
 #include "scene/parser.h"
 #include "scene_builder.h"
+#include "solver/edits.h"
 #include "solver/solver.h"
 #include "visibility/backend.h"
 
@@ -132,6 +133,39 @@ TEST(LightGroups, TheGroupsAddUpToTheWholeSolveAndEachIsItsEmittersLight) {
       alone_light += area * double(mean_component(alone.solution.radiosity(p, v)));
   }
   EXPECT_NEAR(lamp_light / alone_light, 1.0, 0.01);
+}
+
+// Edits continue a solve with groups: the panel dimmed and its reflectance changed, a polygon
+// forced to subdivide, the light made brighter: the groups still add up to the whole.
+TEST(LightGroups, EditsKeepTheGroupsAddingUpToTheWhole) {
+  const Hierarchy h =
+      build_hierarchy(parse_scene_file(RAD_SOURCE_DIR "/scenes/cornell_box_groups.des"));
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  SolverOptions o;
+  o.converge = 1e-2;
+  SolverState s = make_solver_state(h, o);
+  solve(s, *vis);
+  int32_t panel = -1;
+  for (size_t i = 0; i < h.objects.size(); ++i)
+    if (h.objects[i].group == "panel") panel = int32_t(i);
+  ASSERT_GE(panel, 0);
+  Material m = s.solution.materials[size_t(panel)];
+  m.emission *= 0.5f;
+  m.reflectance *= 0.5f;
+  set_material(edit_context(s), panel, m, *vis);
+  force_subdivide(edit_context(s), 0, *vis);
+  set_light(s.solution, s.energy, 0, h.lights[0].colour, 2.0f * h.lights[0].intensity);
+  solve(s, *vis);
+  double diff = 0.0, total = 0.0;
+  for (size_t p = 0; p < s.solution.vertex_states.size(); ++p) {
+    for (uint32_t v = 0; v < s.solution.vertex_states[p].size(); ++v) {
+      const Vec3 all = s.solution.radiosity(p, v);
+      const Vec3 sum = s.solution.group_radiosity(0, p, v) + s.solution.group_radiosity(1, p, v);
+      diff += mean_component(glm::abs(all - sum));
+      total += mean_component(glm::abs(all));
+    }
+  }
+  EXPECT_LT(diff / total, 1e-5);
 }
 
 TEST(LightGroups, ASceneNamingNoGroupHasNone) {
