@@ -85,6 +85,9 @@ KernelSums add_kernels(const SampleLanes& s, LaneValues values, const Vec3& x, c
       std::memcpy(&k[c], &kv, sizeof kv);
     }
     const Lanes kvis = visible ? kv * visible[parent[group]] : kv;
+    if constexpr (!Coarse) {
+      if (k) std::memcpy(&k[c], &kvis, sizeof kvis);
+    }
     sums.w += kv;
     sums.r += kvis * load(&values.r[c]);
     sums.g += kvis * load(&values.g[c]);
@@ -96,14 +99,29 @@ KernelSums add_kernels(const SampleLanes& s, LaneValues values, const Vec3& x, c
 // Near field (analytic method): the source's unshot radiosity weighted over the fine samples,
 // each group taking the visibility of its coarse sample (coarse_visible, 1 or 0). Returns false
 // when no fine sample faces the receiver.
+// `k`, when given, gets each fine sample's weight times its visibility (add_kernels), and
+// `weight` their sum.
 bool near_field_mean(const Vec3& x, const Vec3& n, const ShotSource& src, LaneValues fine,
-                     const float* coarse_visible, Vec3* mean) {
+                     const float* coarse_visible, Vec3* mean, float* k, float* weight) {
   const KernelSums sums = add_kernels<false>(src.fine_sample, fine, x, n, coarse_visible,
-                                             src.fine_group_parent.data(), nullptr);
-  const float weight = sums.weight();
-  if (weight <= 0.0f) return false;
-  *mean = sums.weighted() / weight;
+                                             src.fine_group_parent.data(), k);
+  *weight = sums.weight();
+  if (*weight <= 0.0f) return false;
+  *mean = sums.weighted() / *weight;
   return true;
+}
+
+// The sum of weights w times values v over n lanes (a multiple of W): a light group's share
+// weighed as add_kernels weighed the whole, without evaluating the kernels again.
+Vec3 weighted_sum(const float* w, LaneValues v, size_t n) {
+  Lanes r{}, g{}, b{};
+  for (size_t c = 0; c < n; c += W) {
+    const Lanes k = load(&w[c]);
+    r += k * load(&v.r[c]);
+    g += k * load(&v.g[c]);
+    b += k * load(&v.b[c]);
+  }
+  return {lane_sum(r), lane_sum(g), lane_sum(b)};
 }
 
 }  // namespace
@@ -394,19 +412,23 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
                   const std::vector<float>& b) {
     return LaneValues{r.data(), g.data(), b.data()};
   };
+  // With groups, the fine samples' weights are kept for their shares.
+  const size_t nf = src.fine_sample.size();
+  float* const fine_k =
+      groups.empty() ? nullptr : (scratch.fine_weight.resize(nf), scratch.fine_weight.data());
   if (fine_eq7) {
     scratch.coarse_visible.assign(ns, traced ? 0.0f : 1.0f);
     if (traced) {
       for (size_t j = 0; j < na; ++j) scratch.coarse_visible[scratch.active[j]] = scratch.clear[j];
     }
-    auto fine_gain = [&](LaneValues fine) {
-      return add_kernels<false>(src.fine_sample, fine, x, n, scratch.coarse_visible.data(),
-                                src.fine_group_parent.data(), nullptr)
-          .weighted();
-    };
-    each_group(
-        [&](const GroupShare& gs) { return fine_gain(lanes(gs.fine_r, gs.fine_g, gs.fine_b)); });
-    return fine_gain(values_of(src.fine_sample));
+    const Vec3 whole =
+        add_kernels<false>(src.fine_sample, values_of(src.fine_sample), x, n,
+                           scratch.coarse_visible.data(), src.fine_group_parent.data(), fine_k)
+            .weighted();
+    each_group([&](const GroupShare& gs) {
+      return weighted_sum(fine_k, lanes(gs.fine_r, gs.fine_g, gs.fine_b), nf);
+    });
+    return whole;
   }
   // Near field (exact form factor only): the unshot radiosity weighted over the fine samples,
   // each taking its stratum's visibility.
@@ -416,13 +438,11 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
       for (size_t j = 0; j < na; ++j) scratch.coarse_visible[scratch.active[j]] = scratch.clear[j];
     }
     Vec3 mean;
-    if (near_field_mean(x, n, src, values_of(src.fine_sample), scratch.coarse_visible.data(),
-                        &mean)) {
+    float weight = 0.0f;
+    if (near_field_mean(x, n, src, values_of(src.fine_sample), scratch.coarse_visible.data(), &mean,
+                        fine_k, &weight)) {
       each_group([&](const GroupShare& gs) {
-        Vec3 m(0.0f);
-        near_field_mean(x, n, src, lanes(gs.fine_r, gs.fine_g, gs.fine_b),
-                        scratch.coarse_visible.data(), &m);
-        return m * *ff;
+        return weighted_sum(fine_k, lanes(gs.fine_r, gs.fine_g, gs.fine_b), nf) / weight * *ff;
       });
       return mean * *ff;
     }
@@ -434,11 +454,8 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
     return src.mean_unshot * *ff;
   }
   if (!traced) {
-    each_group([&](const GroupShare& gs) {
-      Vec3 sum(0.0f);
-      for (size_t i = 0; i < ns; ++i) sum += Vec3(gs.r[i], gs.g[i], gs.b[i]) * k[i];
-      return sum * scale;
-    });
+    each_group(
+        [&](const GroupShare& gs) { return weighted_sum(k, lanes(gs.r, gs.g, gs.b), ns) * scale; });
     return unoccluded * scale;
   }
   // The visible samples summed afresh (not the blocked ones subtracted): a vertex in full

@@ -25,6 +25,7 @@ struct GatherScratch {
   std::vector<float> clear;           // per active sample, the part of its rays not blocked
   std::vector<Vec3> group_gain;       // with light groups: each group's part of a gain
   std::vector<Vec3> group_all, group_major;  // regather_shots' sums per group (refine.h)
+  std::vector<float> fine_weight;  // with light groups: each fine sample's weight x visibility
   SolverStats stats;
 };
 
