@@ -96,21 +96,6 @@ KernelSums add_kernels(const SampleLanes& s, LaneValues values, const Vec3& x, c
   return sums;
 }
 
-// Near field (analytic method): the source's unshot radiosity weighted over the fine samples,
-// each group taking the visibility of its coarse sample (coarse_visible, 1 or 0). Returns false
-// when no fine sample faces the receiver.
-// `k`, when given, gets each fine sample's weight times its visibility (add_kernels), and
-// `weight` their sum.
-bool near_field_mean(const Vec3& x, const Vec3& n, const ShotSource& src, LaneValues fine,
-                     const float* coarse_visible, Vec3* mean, float* k, float* weight) {
-  const KernelSums sums = add_kernels<false>(src.fine_sample, fine, x, n, coarse_visible,
-                                             src.fine_group_parent.data(), k);
-  *weight = sums.weight();
-  if (*weight <= 0.0f) return false;
-  *mean = sums.weighted() / *weight;
-  return true;
-}
-
 // The sum of weights w times values v over n lanes (a multiple of W): a light group's share
 // weighed as add_kernels weighed the whole, without evaluating the kernels again.
 Vec3 weighted_sum(const float* w, LaneValues v, size_t n) {
@@ -371,36 +356,103 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
       na += sm.area[i] > 0.0f ? 1 : 0;
     }
   }
-  if (ff ? *ff <= 0.0f : na == 0) {
+  // Near field (exact form factor only): the source's unshot radiosity weighed over the fine
+  // samples, each taking its stratum's visibility. Where the receiver's tangent plane cuts the
+  // source, a stratum whose sample lies behind that plane may hold fine points in front, which
+  // weigh most when the receiver is close. Its ray to the stratum's own end would run behind
+  // the receiver and say nothing of them; taking them as seen would let light through (a
+  // board's side in a slot a fraction of a millimetre from the panel beside it, at right angles
+  // to the wall behind, took the wall's light through the panel). Such a stratum (an *edge
+  // stratum*) gets a ray of its own, to its fine point in front that weighs most.
+  const size_t nf = src.fine_sample.size();
+  float* const fine_k = (scratch.fine_weight.resize(nf), scratch.fine_weight.data());
+  float fine_sum = 0.0f;
+  Vec3 fine_unoccluded(0.0f);
+  bool near =
+      ff && !src.fine_sample.empty() && glm::dot(x - src.centroid, src.axis) < src.near_distance;
+  if (near) {
+    const KernelSums fs = add_kernels<false>(src.fine_sample, values_of(src.fine_sample), x, n,
+                                             nullptr, nullptr, fine_k);
+    fine_sum = fs.weight();
+    fine_unoccluded = fs.weighted();
+    near = fine_sum > 0.0f;
+  }
+  // The active samples [0, na) get the shot's rays; the edge strata [na, na + ne) their own.
+  size_t ne = 0;
+  if (near) {
+    scratch.stratum_weight.assign(ns, 0.0f);
+    scratch.edge_lane.assign(ns, 0u);
+    for (size_t c = 0, group = 0; c < nf; c += W, ++group) {
+      const uint32_t g = src.fine_group_parent[group];
+      float& w = scratch.stratum_weight[g];
+      uint32_t& best = scratch.edge_lane[g];
+      for (size_t j = 0; j < W; ++j) {
+        if (fine_k[c + j] > fine_k[best] || w == 0.0f) best = uint32_t(c + j);
+        w += fine_k[c + j];
+      }
+    }
+    for (size_t i = 0; i < ns; ++i) {
+      scratch.active[na + ne] = uint32_t(i);
+      ne += k[i] <= 0.0f && scratch.stratum_weight[i] > 0.0f ? 1 : 0;
+    }
+  }
+  if (ff ? *ff <= 0.0f : na + ne == 0) {
     ++scratch.stats.culled;
     return Vec3(0.0f);
   }
   ++scratch.stats.vertex_evaluations;
   const float scale = ff ? (weight_sum > 0.0f ? *ff / weight_sum : 0.0f) : 1.0f;
+  // An edge stratum's ray: to its heaviest fine point, moved off the surface.
+  auto trace_edges = [&](size_t from, size_t count, uint8_t* blocked) {
+    scratch.end_x.resize(count), scratch.end_y.resize(count), scratch.end_z.resize(count);
+    for (size_t j = 0; j < count; ++j) {
+      const uint32_t lane = scratch.edge_lane[scratch.active[from + j]];
+      const Vec3 e =
+          off_surface(src.fine_sample.point(lane), src.fine_sample.normal(lane), st.shadow_offset);
+      scratch.end_x[j] = e.x, scratch.end_y[j] = e.y, scratch.end_z[j] = e.z;
+    }
+    const SegmentFan fan{off_surface(x, n, st.shadow_offset), scratch.end_x.data(),
+                         scratch.end_y.data(), scratch.end_z.data(), count};
+    vis.occluded_fan(fan, std::span<uint8_t>(blocked, count), scratch.stats.rays);
+  };
 
   // Visibility of the active samples: traced, or all visible without shadows or below the cut.
   // The cut weighs the coarse samples, which say nothing of the fine points' EQ 7 (every coarse
   // weight may be 0 where fine points face the receiver): there every stratum is traced.
+  // Near the source the fine samples' weights say what the gain is and which stratum weighs most.
+  const Vec3 unoccluded_gain = near ? fine_unoccluded * (*ff / fine_sum) : unoccluded * scale;
+  const float* const weighs = near ? scratch.stratum_weight.data() : k;
   const bool cut =
-      !fine_eq7 && max_component(glm::abs(unoccluded * scale)) < st.cut;  // |.|: negative edits
-  if (st.shadows && cut && na > 0) {
+      !fine_eq7 && max_component(glm::abs(unoccluded_gain)) < st.cut;  // |.|: negative edits
+  if (st.shadows && cut && na + ne > 0) {
     // Below the cut one ray, to the sample that weighs most, stands for all: a gain taken
     // unoccluded would go through walls, and in a building many small shots add such gains up
     // everywhere, too bright and with more energy left to shoot.
-    scratch.stats.intensity_cuts += na - 1;
+    scratch.stats.intensity_cuts += na + ne - 1;
     size_t best = 0;
-    for (size_t j = 1; j < na; ++j)
-      if (k[scratch.active[j]] > k[scratch.active[best]]) best = j;
-    const uint32_t one = uint32_t(best);
+    for (size_t j = 1; j < na + ne; ++j)
+      if (weighs[scratch.active[j]] > weighs[scratch.active[best]]) best = j;
     uint8_t blocked = 0;
-    trace_fan(x, n, src, &one, 1, vis, st, scratch, &blocked);
+    if (best < na) {
+      const uint32_t one = uint32_t(best);
+      trace_fan(x, n, src, &one, 1, vis, st, scratch, &blocked);
+    } else {
+      trace_edges(best, 1, &blocked);
+    }
     if (blocked) return Vec3(0.0f);
   }
-  const bool traced = st.shadows && !cut && na > 0;
+  const bool traced = st.shadows && !cut && na + ne > 0;
   if (traced) {
     trace_active(x, n, src, na, vis, st, scratch, kept);
     penumbra_rounds(x, n, src, na, vis, st, scratch);
+    if (ne > 0) {
+      scratch.blocked.resize(ne);
+      trace_edges(na, ne, scratch.blocked.data());
+      scratch.clear.resize(na + ne);
+      for (size_t j = 0; j < ne; ++j) scratch.clear[na + j] = scratch.blocked[j] ? 0.0f : 1.0f;
+    }
   }
+  na += ne;
 
   // From here on the gain is linear in the values the source shoots: the light groups' shares
   // (ShotSource::groups) go through the same weights and visibility as the whole, so they add
@@ -412,10 +464,6 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
                   const std::vector<float>& b) {
     return LaneValues{r.data(), g.data(), b.data()};
   };
-  // With groups, the fine samples' weights are kept for their shares.
-  const size_t nf = src.fine_sample.size();
-  float* const fine_k =
-      groups.empty() ? nullptr : (scratch.fine_weight.resize(nf), scratch.fine_weight.data());
   if (fine_eq7) {
     scratch.coarse_visible.assign(ns, traced ? 0.0f : 1.0f);
     if (traced) {
@@ -423,29 +471,29 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
     }
     const Vec3 whole =
         add_kernels<false>(src.fine_sample, values_of(src.fine_sample), x, n,
-                           scratch.coarse_visible.data(), src.fine_group_parent.data(), fine_k)
+                           scratch.coarse_visible.data(), src.fine_group_parent.data(),
+                           groups.empty() ? nullptr : fine_k)
             .weighted();
     each_group([&](const GroupShare& gs) {
       return weighted_sum(fine_k, lanes(gs.fine_r, gs.fine_g, gs.fine_b), nf);
     });
     return whole;
   }
-  // Near field (exact form factor only): the unshot radiosity weighted over the fine samples,
-  // each taking its stratum's visibility.
-  if (ff && !src.fine_sample.empty() && glm::dot(x - src.centroid, src.axis) < src.near_distance) {
-    scratch.coarse_visible.assign(ns, 1.0f);
+  if (near) {
+    // Each fine sample's weight times its stratum's visibility, over the unoccluded weights.
     if (traced) {
+      scratch.coarse_visible.assign(ns, 0.0f);
       for (size_t j = 0; j < na; ++j) scratch.coarse_visible[scratch.active[j]] = scratch.clear[j];
+      for (size_t c = 0, group = 0; c < nf; c += W, ++group) {
+        const float v = scratch.coarse_visible[src.fine_group_parent[group]];
+        for (size_t j = 0; j < W; ++j) fine_k[c + j] *= v;
+      }
     }
-    Vec3 mean;
-    float weight = 0.0f;
-    if (near_field_mean(x, n, src, values_of(src.fine_sample), scratch.coarse_visible.data(), &mean,
-                        fine_k, &weight)) {
-      each_group([&](const GroupShare& gs) {
-        return weighted_sum(fine_k, lanes(gs.fine_r, gs.fine_g, gs.fine_b), nf) / weight * *ff;
-      });
-      return mean * *ff;
-    }
+    const float to_gain = *ff / fine_sum;
+    each_group([&](const GroupShare& gs) {
+      return weighted_sum(fine_k, lanes(gs.fine_r, gs.fine_g, gs.fine_b), nf) * to_gain;
+    });
+    return weighted_sum(fine_k, values_of(src.fine_sample), nf) * to_gain;
   }
   // The visible part of the source holds no sample (a sliver above the tangent plane): it is
   // taken unoccluded with the source's mean unshot radiosity.

@@ -25,7 +25,9 @@ struct GatherScratch {
   std::vector<float> clear;           // per active sample, the part of its rays not blocked
   std::vector<Vec3> group_gain;       // with light groups: each group's part of a gain
   std::vector<Vec3> group_all, group_major;  // regather_shots' sums per group (refine.h)
-  std::vector<float> fine_weight;  // with light groups: each fine sample's weight x visibility
+  std::vector<float> fine_weight;            // fine samples' weights (x visibility, once traced)
+  std::vector<float> stratum_weight;         // near field: each stratum's fine samples' weight
+  std::vector<uint32_t> edge_lane;           // near field: each stratum's heaviest fine sample
   SolverStats stats;
 };
 

@@ -124,6 +124,43 @@ TEST(Gather, BesideACurvedSourceTheGainIsItsTrianglesExactFormFactor) {
   EXPECT_LT(error / truth_sum, 0.3);
 }
 
+// A point in a slot 0.3 mm wide between a panel and the side of a board, at right angles to an
+// emitting wall 5 cm below: the point's tangent plane cuts the wall, and the strata of the wall
+// across that cut have their centroids (and their shot's rays) behind the point, while their
+// fine points in front weigh most. Through the panel the point sees nothing of the wall (below
+// it a 1 mm gap shows the wall edge-on), so it gains almost nothing, whatever the strata.
+TEST(Gather, InASlotBesideAPanelNoLightComesThroughThePanel) {
+  SceneDescription d;
+  testing::add_quad(d, "wall", {-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, Vec3(0), Vec3(1));
+  testing::add_quad(d, "panel", {0.0997f, -0.5f, 0.001f}, {0.0997f, 0.5f, 0.001f},
+                    {0.0997f, 0.5f, 0.5f}, {0.0997f, -0.5f, 0.5f}, Vec3(0.5f), Vec3(0));
+  const Hierarchy h = build_hierarchy(d);
+  const SolverState s = make_solver_state(h, {});
+  std::vector<ShotSource> wall;
+  for (size_t c = 0; c < s.scene.clusters.size(); ++c) {
+    if (h.triangles.object[s.scene.clusters.polygons[s.scene.clusters.first[c]]] == 0)
+      wall.push_back(make_shot_source(s, int32_t(c)));
+  }
+  GatherSettings g = gather_settings(s);
+  GatherScratch sc;
+  const Vec3 n(-1, 0, 0);
+  for (BackendKind kind : {BackendKind::Embree, BackendKind::Grid, BackendKind::Brute}) {
+    const auto vis = make_visibility_backend(kind, h);
+    for (float y : {-0.2f, 0.0f, 0.13f}) {
+      const Vec3 x(0.1f, y, 0.05f);
+      float open = 0.0f, slot = 0.0f;
+      for (const ShotSource& src : wall) {
+        g.shadows = false;
+        open += gather_from_source(x, n, x, src, *vis, g, sc).x;
+        g.shadows = true;
+        slot += gather_from_source(x, n, x, src, *vis, g, sc).x;
+      }
+      ASSERT_GT(open, 0.4f) << "half the view is the wall";
+      EXPECT_LT(slot, 0.01f * open) << "y " << y << ", backend " << to_string(kind);
+    }
+  }
+}
+
 TEST(Gather, IntensityCutSkipsRaysAndCountsThem) {
   CornerScene c;
   GatherSettings g = gather_settings(c.s);

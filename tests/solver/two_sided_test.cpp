@@ -84,15 +84,21 @@ TEST(TwoSided, APanelSolvesAsTwoOneSidedPanelsBackToBack) {
   }
   const auto vis_one = make_visibility_backend(BackendKind::Embree, one);
   const auto vis_two = make_visibility_backend(BackendKind::Embree, two);
-  const SolverState a = testing::solve_shots(one, *vis_one, SolverOptions{}, 300);
-  const SolverState b = testing::solve_shots(two, *vis_two, SolverOptions{}, 300);
+  // Without the roulette and the intensity cut: the two layouts number their clusters apart, so
+  // their shots draw differently, and that noise (0.4-0.5% on the far side's dim light) would
+  // hide a real difference. Without it they agree within 0.01%.
+  SolverOptions exact;
+  exact.roulette = 0.0f;
+  exact.intensity_cut = 0.0f;
+  const SolverState a = testing::solve_shots(one, *vis_one, exact, 120);
+  const SolverState b = testing::solve_shots(two, *vis_two, exact, 120);
   const auto [near_b, near_e] = triangles_of(two, "near");
   const auto [far_b, far_e] = triangles_of(two, "far");
   const DVec3 near_one = integral(a, first, first + 2), far_one = integral(a, first + 2, last);
   const DVec3 near_two = integral(b, near_b, near_e), far_two = integral(b, far_b, far_e);
   for (int k = 0; k < 3; ++k) {
-    EXPECT_NEAR(near_one[k] / near_two[k], 1.0, 0.005) << "channel " << k;
-    EXPECT_NEAR(far_one[k] / far_two[k], 1.0, 0.005) << "channel " << k;
+    EXPECT_NEAR(near_one[k] / near_two[k], 1.0, 0.001) << "channel " << k;
+    EXPECT_NEAR(far_one[k] / far_two[k], 1.0, 0.001) << "channel " << k;
     // The far side has its own light: what comes over the screen, less than the near side's.
     EXPECT_GT(far_one[k], 0.02 * near_one[k]) << "channel " << k;
     EXPECT_LT(far_one[k], 0.8 * near_one[k]) << "channel " << k;
@@ -101,7 +107,7 @@ TEST(TwoSided, APanelSolvesAsTwoOneSidedPanelsBackToBack) {
   const auto [x2_b, x2_e] = triangles_of(one, "x2");
   const auto [x2b_b, x2b_e] = triangles_of(two, "x2");
   const DVec3 wall_one = integral(a, x2_b, x2_e), wall_two = integral(b, x2b_b, x2b_e);
-  for (int k = 0; k < 3; ++k) EXPECT_NEAR(wall_one[k] / wall_two[k], 1.0, 0.005);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(wall_one[k] / wall_two[k], 1.0, 0.001);
 }
 
 TEST(TwoSided, OneSidedThePanelsBackIsNotThere) {
