@@ -364,22 +364,26 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
   // board's side in a slot a fraction of a millimetre from the panel beside it, at right angles
   // to the wall behind, took the wall's light through the panel). Such a stratum (an *edge
   // stratum*) gets a ray of its own, to its fine point in front that weighs most.
+  // Only a source reaching behind the tangent plane (not merely touching it, as a wall does the
+  // floor) can have edge strata: elsewhere the fine weights wait until the visibility is known,
+  // and take it in the same pass.
   const size_t nf = src.fine_sample.size();
   float* const fine_k = (scratch.fine_weight.resize(nf), scratch.fine_weight.data());
   float fine_sum = 0.0f;
   Vec3 fine_unoccluded(0.0f);
-  bool near =
+  const bool near =
       ff && !src.fine_sample.empty() && glm::dot(x - src.centroid, src.axis) < src.near_distance;
-  if (near) {
+  bool cut_by_plane = near && lowest_above(src.box, x, n) < 0.0f;
+  if (cut_by_plane) {
     const KernelSums fs = add_kernels<false>(src.fine_sample, values_of(src.fine_sample), x, n,
                                              nullptr, nullptr, fine_k);
     fine_sum = fs.weight();
     fine_unoccluded = fs.weighted();
-    near = fine_sum > 0.0f;
+    cut_by_plane = fine_sum > 0.0f;
   }
   // The active samples [0, na) get the shot's rays; the edge strata [na, na + ne) their own.
   size_t ne = 0;
-  if (near) {
+  if (cut_by_plane) {
     scratch.stratum_weight.assign(ns, 0.0f);
     scratch.edge_lane.assign(ns, 0u);
     for (size_t c = 0, group = 0; c < nf; c += W, ++group) {
@@ -420,8 +424,9 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
   // The cut weighs the coarse samples, which say nothing of the fine points' EQ 7 (every coarse
   // weight may be 0 where fine points face the receiver): there every stratum is traced.
   // Near the source the fine samples' weights say what the gain is and which stratum weighs most.
-  const Vec3 unoccluded_gain = near ? fine_unoccluded * (*ff / fine_sum) : unoccluded * scale;
-  const float* const weighs = near ? scratch.stratum_weight.data() : k;
+  const Vec3 unoccluded_gain =
+      cut_by_plane ? fine_unoccluded * (*ff / fine_sum) : unoccluded * scale;
+  const float* const weighs = cut_by_plane ? scratch.stratum_weight.data() : k;
   const bool cut =
       !fine_eq7 && max_component(glm::abs(unoccluded_gain)) < st.cut;  // |.|: negative edits
   if (st.shadows && cut && na + ne > 0) {
@@ -481,19 +486,31 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
   }
   if (near) {
     // Each fine sample's weight times its stratum's visibility, over the unoccluded weights.
+    scratch.coarse_visible.assign(ns, traced ? 0.0f : 1.0f);
     if (traced) {
-      scratch.coarse_visible.assign(ns, 0.0f);
       for (size_t j = 0; j < na; ++j) scratch.coarse_visible[scratch.active[j]] = scratch.clear[j];
+    }
+    Vec3 whole(0.0f);
+    if (cut_by_plane) {
       for (size_t c = 0, group = 0; c < nf; c += W, ++group) {
         const float v = scratch.coarse_visible[src.fine_group_parent[group]];
         for (size_t j = 0; j < W; ++j) fine_k[c + j] *= v;
       }
+      whole = weighted_sum(fine_k, values_of(src.fine_sample), nf);
+    } else {
+      const KernelSums fs =
+          add_kernels<false>(src.fine_sample, values_of(src.fine_sample), x, n,
+                             scratch.coarse_visible.data(), src.fine_group_parent.data(), fine_k);
+      fine_sum = fs.weight();
+      whole = fs.weighted();
     }
-    const float to_gain = *ff / fine_sum;
-    each_group([&](const GroupShare& gs) {
-      return weighted_sum(fine_k, lanes(gs.fine_r, gs.fine_g, gs.fine_b), nf) * to_gain;
-    });
-    return weighted_sum(fine_k, values_of(src.fine_sample), nf) * to_gain;
+    if (fine_sum > 0.0f) {
+      const float to_gain = *ff / fine_sum;
+      each_group([&](const GroupShare& gs) {
+        return weighted_sum(fine_k, lanes(gs.fine_r, gs.fine_g, gs.fine_b), nf) * to_gain;
+      });
+      return whole * to_gain;
+    }
   }
   // The visible part of the source holds no sample (a sliver above the tangent plane): it is
   // taken unoccluded with the source's mean unshot radiosity.
