@@ -3,6 +3,8 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include <limits>
+
 #include "core/denormals.h"
 
 namespace rad {
@@ -42,13 +44,24 @@ Vec3 find_gather_point(const Triangles& t, size_t p, const Vec3& x, const Visibi
   return moved && glm::length(at - x) <= probe_settings.depth ? at : x;
 }
 
+float clearance_above(const Triangles& t, size_t p, const Vec3& x, const VisibilityBackend& vis,
+                      const BuriedProbe& probe, VisibilityStats& stats) {
+  const Vec3 n = t.normal[p];
+  const SegmentHit hit =
+      vis.first_hit(Segment{off_surface(x, n, probe.offset), n * probe.depth}, stats);
+  return hit.hit ? probe.offset + hit.t * probe.depth : std::numeric_limits<float>::infinity();
+}
+
 void find_buried_vertices(const Triangles& t, size_t p, const PolygonMesh& mesh, uint32_t first,
                           const VisibilityBackend& vis, const BuriedProbe& probe,
-                          std::vector<MovedVertex>& moved, VisibilityStats& stats) {
+                          std::vector<MovedVertex>& moved, std::vector<CoveredVertex>& covered,
+                          VisibilityStats& stats) {
   for (uint32_t v = first; v < uint32_t(mesh.vertex_count()); ++v) {
     const Vec3 x = mesh.positions[v];
     const Vec3 at = find_gather_point(t, p, x, vis, probe, stats);
     if (at != x) moved.push_back({v, at});
+    const float c = clearance_above(t, p, x, vis, probe, stats);
+    if (c < std::numeric_limits<float>::infinity()) covered.push_back({v, c});
   }
 }
 
@@ -57,14 +70,15 @@ BuriedVertices find_all_buried_vertices(const Triangles& t, const Mesh& mesh,
                                         VisibilityStats& stats) {
   BuriedVertices b;
   b.moved.resize(mesh.polygons.size());
+  b.covered.resize(mesh.polygons.size());
   tbb::enumerable_thread_specific<VisibilityStats> local;
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.polygons.size(), 64),
-                    [&](const auto& range) {
-                      const ScopedFlushDenormals ftz;
-                      VisibilityStats& st = local.local();
-                      for (size_t p = range.begin(); p != range.end(); ++p)
-                        find_buried_vertices(t, p, mesh.polygons[p], 0, vis, probe, b.moved[p], st);
-                    });
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, mesh.polygons.size(), 64), [&](const auto& range) {
+        const ScopedFlushDenormals ftz;
+        VisibilityStats& st = local.local();
+        for (size_t p = range.begin(); p != range.end(); ++p)
+          find_buried_vertices(t, p, mesh.polygons[p], 0, vis, probe, b.moved[p], b.covered[p], st);
+      });
   for (const VisibilityStats& st : local) stats += st;
   b.found = true;
   return b;

@@ -116,6 +116,7 @@ std::vector<RankReport> collect(SolverState& s) {
       if (!moved.empty() || p < s.scene.buried.moved.size()) {
         s.scene.buried.moved.resize(
             std::max(s.scene.buried.moved.size(), s.solution.mesh.polygons.size()));
+        s.scene.buried.covered.resize(s.scene.buried.moved.size());
         s.scene.buried.moved[p] = std::move(moved);
       }
       ++received[size_t(r)];

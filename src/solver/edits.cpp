@@ -153,7 +153,7 @@ size_t force_subdivide(EditContext ctx, int32_t polygon, const VisibilityBackend
   if (ctx.scene.buried.found && ctx.options.shadows) {
     find_buried_vertices(ctx.solution.hierarchy->triangles, size_t(polygon), m, made_before, vis,
                          buried_probe(ctx.scene), ctx.scene.buried.moved[size_t(polygon)],
-                         ctx.stats.rays);
+                         ctx.scene.buried.covered[size_t(polygon)], ctx.stats.rays);
   }
   const GatherSettings settings = gather_settings(ctx.options, ctx.scene, ctx.energy);
   parallel_gather(created.size(), 1, ctx.stats, [&](size_t begin, size_t end, GatherScratch& sc) {

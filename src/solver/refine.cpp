@@ -2,7 +2,10 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
 #include <tuple>
 
 #include "mesh/subdivide.h"
@@ -52,7 +55,10 @@ struct EdgeMidpoint {
 // Whether element e of polygon p (mesh m, vertex states vs) is to be split: its vertices'
 // radiosities differ by more than `limit`, or it crosses into a solid (some of its vertices
 // buried, some not: its light to shoot falls to nothing across it, buried_vertices.h), and it
-// is still at least `min_split_size`. Which of its edges differ: in *d (01, 12, 20).
+// is still at least `min_split_size`; or, down to kCoverSplits levels below that, across the
+// edge of a solid (some of its vertices buried, some not) or of a cover (some covered, some not:
+// the light falls within a few gap widths). Which of its edges differ: in *d (01, 12, 20).
+constexpr float kCoverSplits = 3.0f;
 bool needs_split(const Solution& s, const BuriedVertices& buried, size_t p, uint32_t e, float limit,
                  float min_split_size, std::array<bool, 3>* d) {
   const PolygonMesh& m = s.mesh.polygons[p];
@@ -63,7 +69,19 @@ bool needs_split(const Solution& s, const BuriedVertices& buried, size_t p, uint
              in2 = buried.is_moved(p, el.v[2]);
   *d = {in0 != in1 || differs(b0, b1, limit), in1 != in2 || differs(b1, b2, limit),
         in2 != in0 || differs(b2, b0, limit)};
-  return ((*d)[0] || (*d)[1] || (*d)[2]) && element_size(m, e) >= min_split_size;
+  if (!((*d)[0] || (*d)[1] || (*d)[2])) return false;
+  const float size = element_size(m, e);
+  if (size >= min_split_size) return true;
+  const float floor = min_split_size * std::exp2(-kCoverSplits);
+  if (in0 != in1 || in1 != in2) return size >= floor;  // a contact: no gap to resolve
+  const float c0 = buried.clearance(p, el.v[0]), c1 = buried.clearance(p, el.v[1]),
+              c2 = buried.clearance(p, el.v[2]);
+  const float inf = std::numeric_limits<float>::infinity();
+  if ((c0 < inf) == (c1 < inf) && (c1 < inf) == (c2 < inf)) return false;
+  // Down to the same floor whatever the gap: stopping at the gap's width (a lamp 1 cm below a
+  // ceiling, elements of 2.7 cm) left the living room of tools/real_rooms at 2.89% against
+  // 2.64%, for 6% fewer vertices.
+  return size >= floor;
 }
 
 }  // namespace
@@ -225,7 +243,7 @@ void refine(RefineContext ctx, std::span<const uint32_t> polygons, const Receive
         // The new vertices inside solids, before any of them gathers (step 3).
         if (ctx.scene.buried.found && ctx.options.shadows) {
           find_buried_vertices(tris, p, m, made_before, vis, buried_probe(ctx.scene),
-                               ctx.scene.buried.moved[p], probes[i]);
+                               ctx.scene.buried.moved[p], ctx.scene.buried.covered[p], probes[i]);
         }
       }
     });

@@ -218,6 +218,7 @@ void find_buried_vertices_once(const SolverOptions& options, const Solution& sol
                                               buried_probe(scene), stats.rays);
     } else {
       scene.buried.moved.assign(sol.mesh.polygons.size(), {});
+      scene.buried.covered.assign(sol.mesh.polygons.size(), {});
       scene.buried.found = true;
     }
   }

@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include "mesh/subdivide.h"
 #include "scene_builder.h"
 #include "solver/edits.h"
 #include "solver/solver.h"
@@ -148,6 +151,51 @@ TEST(BuriedVertices, WithoutShadowsNoVertexMovesNotEvenOneMadeLater) {
   ASSERT_TRUE(s.scene.buried.found);
   for (size_t p = 0; p < s.scene.buried.moved.size(); ++p)
     EXPECT_TRUE(s.scene.buried.moved[p].empty()) << "polygon " << p;
+}
+
+// A box standing 1 mm above the board, under a lamp: the board's vertices under the box are
+// covered, the others not, and refinement splits the elements across the footprint's edge below
+// the smallest size (the light falls from the open board's to nothing within millimetres of it)
+// and no others.
+TEST(BuriedVertices, ElementsAcrossTheEdgeOfACoverSplitBelowTheSmallestSize) {
+  const Hierarchy h = board_and([](SceneDescription& d) {
+    add_solid_box(d, "box", {0.3f, 0.3f, 0.001f}, {0.7f, 0.7f, 0.2f});
+    testing::add_quad(d, "lamp", {0.2f, 0.2f, 1}, {0.2f, 0.8f, 1}, {0.8f, 0.8f, 1}, {0.8f, 0.2f, 1},
+                      Vec3(0), Vec3(1));
+  });
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  SolverOptions o;
+  o.max_shots = 6;
+  SolverState s = make_solver_state(h, o);
+  solve(s, *vis);
+  const float min_size = s.scene.min_size;
+  auto under_box = [](const Vec3& x) {
+    return x.x > 0.3f && x.x < 0.7f && x.y > 0.3f && x.y < 0.7f;
+  };
+  // Distance from the footprint's outline.
+  auto from_edge = [](const Vec3& x) {
+    const float dx = std::max(0.3f - x.x, x.x - 0.7f), dy = std::max(0.3f - x.y, x.y - 0.7f);
+    if (dx <= 0.0f && dy <= 0.0f) return -std::max(dx, dy);  // inside: to the nearest side
+    return std::hypot(std::max(dx, 0.0f), std::max(dy, 0.0f));
+  };
+  size_t covered = 0, small = 0;
+  for (size_t p = 0; p < 2; ++p) {
+    const PolygonMesh& m = s.solution.mesh.polygons[p];
+    for (uint32_t v = 0; v < m.vertex_count(); ++v) {
+      if (!(s.scene.buried.clearance(p, v) < 1.0f)) continue;
+      ++covered;
+      EXPECT_TRUE(under_box(m.positions[v])) << "a covered vertex outside the footprint";
+    }
+    for_each_leaf(m, [&](uint32_t e) {
+      if (element_size(m, e) >= min_size) return;
+      ++small;
+      Vec3 c(0.0f);
+      for (uint32_t v : m.elements[e].v) c += m.positions[v] / 3.0f;
+      EXPECT_LT(from_edge(c), 2.0f * min_size) << "a small element away from the edge";
+    });
+  }
+  EXPECT_GT(covered, 0u);
+  EXPECT_GT(small, 0u) << "elements across the footprint's edge split below the smallest size";
 }
 
 INSTANTIATE_TEST_SUITE_P(AllBackends, BuriedVertexTest,
