@@ -44,24 +44,24 @@ Vec3 find_gather_point(const Triangles& t, size_t p, const Vec3& x, const Visibi
   return moved && glm::length(at - x) <= probe_settings.depth ? at : x;
 }
 
-float clearance_above(const Triangles& t, size_t p, const Vec3& x, const VisibilityBackend& vis,
-                      const BuriedProbe& probe, VisibilityStats& stats) {
+bool is_covered(const Triangles& t, size_t p, const Vec3& x, const VisibilityBackend& vis,
+                const BuriedProbe& probe, VisibilityStats& stats) {
   const Vec3 n = t.normal[p];
-  const SegmentHit hit =
-      vis.first_hit(Segment{off_surface(x, n, probe.offset), n * probe.depth}, stats);
-  return hit.hit ? probe.offset + hit.t * probe.depth : std::numeric_limits<float>::infinity();
+  const Segment up{off_surface(x, n, probe.offset), n * probe.depth};
+  uint8_t blocked = 0;
+  vis.occluded(std::span<const Segment>(&up, 1), std::span<uint8_t>(&blocked, 1), stats);
+  return blocked != 0;
 }
 
 void find_buried_vertices(const Triangles& t, size_t p, const PolygonMesh& mesh, uint32_t first,
                           const VisibilityBackend& vis, const BuriedProbe& probe,
-                          std::vector<MovedVertex>& moved, std::vector<CoveredVertex>& covered,
+                          std::vector<MovedVertex>& moved, std::vector<uint32_t>& covered,
                           VisibilityStats& stats) {
   for (uint32_t v = first; v < uint32_t(mesh.vertex_count()); ++v) {
     const Vec3 x = mesh.positions[v];
     const Vec3 at = find_gather_point(t, p, x, vis, probe, stats);
     if (at != x) moved.push_back({v, at});
-    const float c = clearance_above(t, p, x, vis, probe, stats);
-    if (c < std::numeric_limits<float>::infinity()) covered.push_back({v, c});
+    if (is_covered(t, p, x, vis, probe, stats)) covered.push_back(v);
   }
 }
 

@@ -45,19 +45,13 @@ struct MovedVertex {
   Vec3 at;  // on its polygon's plane
 };
 
-/// A vertex with a surface `clearance` straight above it, less than the smallest element size.
-struct CoveredVertex {
-  uint32_t vertex;
-  float clearance;
-};
-
 /// Per polygon, its vertices that lie inside a solid and where each gathers, by vertex index;
 /// empty for most. Derived from the geometry alone, so not saved: a state restored from a
 /// checkpoint finds them again.
 struct BuriedVertices {
-  std::vector<std::vector<MovedVertex>> moved;      // per polygon, sorted by vertex
-  std::vector<std::vector<CoveredVertex>> covered;  // per polygon, sorted by vertex
-  bool found = false;                               // every vertex made so far was looked at
+  std::vector<std::vector<MovedVertex>> moved;  // per polygon, sorted by vertex
+  std::vector<std::vector<uint32_t>> covered;   // per polygon, the covered vertices, sorted
+  bool found = false;                           // every vertex made so far was looked at
 
   /// Where vertex v of polygon p gathers: its own position `x`, or where it was moved.
   Vec3 gather_point(size_t p, uint32_t v, const Vec3& x) const {
@@ -66,15 +60,9 @@ struct BuriedVertices {
                                      [](const MovedVertex& m, uint32_t u) { return m.vertex < u; });
     return it != moved[p].end() && it->vertex == v ? it->at : x;
   }
-  /// How far above vertex v of polygon p the surface covering it lies: +inf when none lies
-  /// within the smallest element size.
-  float clearance(size_t p, uint32_t v) const {
-    if (p >= covered.size() || covered[p].empty()) return std::numeric_limits<float>::infinity();
-    const auto it =
-        std::lower_bound(covered[p].begin(), covered[p].end(), v,
-                         [](const CoveredVertex& c, uint32_t u) { return c.vertex < u; });
-    return it != covered[p].end() && it->vertex == v ? it->clearance
-                                                     : std::numeric_limits<float>::infinity();
+  /// Whether a surface lies within the smallest element size straight above vertex v of p.
+  bool is_covered(size_t p, uint32_t v) const {
+    return p < covered.size() && std::binary_search(covered[p].begin(), covered[p].end(), v);
   }
   /// Whether vertex v of polygon p was moved (it holds no light to shoot).
   bool is_moved(size_t p, uint32_t v) const {
@@ -103,16 +91,17 @@ Vec3 find_gather_point(const Triangles& t, size_t p, const Vec3& x, const Visibi
                        const BuriedProbe& probe, VisibilityStats& stats);
 inline constexpr int kMaxSolids = 4;
 
-/// How far above the vertex at `x` of polygon p the first surface straight above it lies, if
-/// within probe.depth; +inf otherwise.
-float clearance_above(const Triangles& t, size_t p, const Vec3& x, const VisibilityBackend& vis,
-                      const BuriedProbe& probe, VisibilityStats& stats);
+/// Whether a surface lies within probe.depth straight above the vertex at `x` of polygon p: an
+/// occlusion query, whose answer every backend gives alike (a first hit's may differ where the
+/// probe meets an edge).
+bool is_covered(const Triangles& t, size_t p, const Vec3& x, const VisibilityBackend& vis,
+                const BuriedProbe& probe, VisibilityStats& stats);
 
 /// Looks at every vertex from index `first` on of polygon p's mesh and records those that move
 /// and those covered (appended: indices grow). Thread-safe for distinct polygons.
 void find_buried_vertices(const Triangles& t, size_t p, const PolygonMesh& mesh, uint32_t first,
                           const VisibilityBackend& vis, const BuriedProbe& probe,
-                          std::vector<MovedVertex>& moved, std::vector<CoveredVertex>& covered,
+                          std::vector<MovedVertex>& moved, std::vector<uint32_t>& covered,
                           VisibilityStats& stats);
 
 /// Every vertex of every polygon of `mesh` (in parallel; deterministic).

@@ -182,7 +182,7 @@ TEST(BuriedVertices, ElementsAcrossTheEdgeOfACoverSplitBelowTheSmallestSize) {
   for (size_t p = 0; p < 2; ++p) {
     const PolygonMesh& m = s.solution.mesh.polygons[p];
     for (uint32_t v = 0; v < m.vertex_count(); ++v) {
-      if (!(s.scene.buried.clearance(p, v) < 1.0f)) continue;
+      if (!s.scene.buried.is_covered(p, v)) continue;
       ++covered;
       EXPECT_TRUE(under_box(m.positions[v])) << "a covered vertex outside the footprint";
     }
