@@ -396,8 +396,7 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
       }
     }
     for (size_t i = 0; i < ns; ++i) {
-      scratch.active[na + ne] = uint32_t(i);
-      ne += k[i] <= 0.0f && scratch.stratum_weight[i] > 0.0f ? 1 : 0;
+      if (k[i] <= 0.0f && scratch.stratum_weight[i] > 0.0f) scratch.active[na + ne++] = uint32_t(i);
     }
   }
   if (ff ? *ff <= 0.0f : na + ne == 0) {
