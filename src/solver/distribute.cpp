@@ -116,6 +116,8 @@ std::vector<RankReport> collect(SolverState& s) {
       if (!moved.empty() || p < s.scene.buried.moved.size()) {
         s.scene.buried.moved.resize(
             std::max(s.scene.buried.moved.size(), s.solution.mesh.polygons.size()));
+        // Covered vertices only steer refinement, which rank 0 does not do for these polygons
+        // after the solve: their lists are not sent, only sized.
         s.scene.buried.covered.resize(s.scene.buried.moved.size());
         s.scene.buried.moved[p] = std::move(moved);
       }
