@@ -129,6 +129,39 @@ TEST(Compare, MissingPolygonIsAnError) {
   EXPECT_THROW(compare_to_reference(view(m), reference_of(h, 1.0f)), Error);
 }
 
+// A tilted triangle 16 m from the origin, and faces of it a few micrometres across: its corners,
+// rounded to floats there, tilt its normal and lift its centroid off the plane by more than a
+// fixed fraction of its size, yet it lies on that triangle.
+TEST(Compare, ASmallFaceFarFromTheOriginFindsItsPolygon) {
+  SceneDescription s;
+  s.name = "far";
+  ObjectDescription o;
+  o.name = "far";
+  o.material = {Vec3(0.5f), Vec3(0.0f)};
+  const Vec3 at(16.2421f, -5.58674f, 10.1272f);
+  const Vec3 a = at, b = at + Vec3(0.7f, 0.31f, 0.05f), c = at + Vec3(0.13f, 0.52f, 0.61f);
+  o.triangles = {{a, b, c}};
+  s.objects = {o};
+  s.roots = {0};
+  const Hierarchy h = build_hierarchy(s);
+  std::vector<Vec3> position;
+  std::vector<uint32_t> indices;
+  for (int k = 0; k < 20; ++k) {
+    const double u = 0.03 * k, v = 0.3;
+    auto on = [&](double du, double dv) {
+      const DVec3 p = DVec3(a) + (u + du) * DVec3(b - a) + (v + dv) * DVec3(c - a);
+      return Vec3(p);  // rounded to float, as rad writes it
+    };
+    const uint32_t base = uint32_t(position.size());
+    position.push_back(on(0, 0));
+    position.push_back(on(1e-5, 0));
+    position.push_back(on(0, 1e-5));
+    indices.insert(indices.end(), {base, base + 1, base + 2});
+  }
+  const std::vector<int32_t> polygon = assign_face_polygons(h.triangles, position, indices);
+  EXPECT_EQ(polygon, std::vector<int32_t>(20, 0));
+}
+
 TEST(RadiosityPly, ReadsBackWhatRadWritesAndRecoversPolygons) {
   const Hierarchy h = unit_square();
   const testing::MeshParts m = split_mesh(h);

@@ -230,13 +230,21 @@ std::vector<int32_t> assign_face_polygons(const Triangles& t, std::span<const Ve
     const DVec3 centroid = (a + b + c) / 3.0;
     const DVec3 n = glm::cross(b - a, c - a);
     const double nl = glm::length(n);
+    // The mesh's positions are floats: far from the origin their rounding (a few units in the
+    // last place of the largest coordinate) tilts a small face's normal and lifts its centroid
+    // off the plane by more than a fixed fraction of its size. Both tolerances grow with it.
+    const double largest = std::max({glm::length(a), glm::length(b), glm::length(c)});
+    const double rounding = 8.0 * double(std::numeric_limits<float>::epsilon()) * largest;
+    const double edge = std::sqrt(nl);
+    const double min_cosine = edge > 0.0 ? std::min(0.999, 1.0 - 10.0 * rounding / edge) : 0.999;
     auto matches = [&](int32_t tri) {
       const auto& k = t.corners[size_t(tri)];
       const DVec3 tn(t.normal[size_t(tri)]);
-      if (nl <= 0.0 || glm::dot(n / nl, tn) < 0.999) return false;
+      if (nl <= 0.0 || glm::dot(n / nl, tn) < std::max(min_cosine, 0.0)) return false;
       const Barycentric bc = barycentric(DVec3(k[0]), DVec3(k[1]), DVec3(k[2]), centroid);
       const double size = std::sqrt(double(t.area[size_t(tri)]));
-      return bc.inside() > -1e-5 && bc.distance <= 1e-4 * size;
+      return bc.inside() > -1e-5 - rounding / std::max(size, 1e-30) &&
+             bc.distance <= 1e-4 * size + rounding;
     };
     // Polygons are written in order: search from the last match on, so a face on two
     // overlapping coplanar triangles (furniture boxes that interpenetrate) goes to the one
