@@ -1,7 +1,7 @@
 // The program's operator new, replaced (a replaceable allocation function, [new.delete]) so that
 // big blocks ask for transparent huge pages where the kernel leaves them to madvise (Debian's
-// default): a block of a million triangles is then faulted in 2 MiB at a time, not 4 KiB, and
-// much of the page faulting that was a quarter of a model's import goes. Everything else is
+// default): a block of a million triangles is then faulted in 2 MiB at a time, not 4 KiB, which
+// saves most of the page faults that would take a quarter of a model's import. Everything else is
 // malloc. (No new_handler is called on failure: rad sets none.)
 // Linked into the rad executable only; not under the sanitizers, which bring their own.
 #if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)

@@ -147,7 +147,8 @@ struct Regrouper {
 
 // What build_hierarchy makes of a regrouped description, made from the hierarchy it was
 // regrouped from: each Pure's triangles, normals and areas copied in the new depth-first order
-// rather than computed again (a second build was a fifth of a million-triangle model's import).
+// rather than computed again (a second build would be a fifth of a million-triangle model's
+// import).
 // A regrouped scene has no transforms, copies or Lights lists, and its Pures carry their flags.
 struct Placer {
   const Hierarchy& from;

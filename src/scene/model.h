@@ -33,7 +33,7 @@ struct ModelGroup {
   std::vector<std::array<Vec3, 3>> triangles;  // front by the right-hand rule
   std::vector<uint32_t> material;              // per triangle, into Model::materials
   // The face each triangle came from, or empty when the format gives no more than the file (a
-  // located string per triangle was half of a million-triangle model's import time).
+  // located string per triangle would be half of a million-triangle model's import time).
   std::vector<SourceLoc> triangle_locs;
   /// Per triangle, its corners' texture coordinates (v down the image, as glTF), or empty when
   /// no triangle of the group has any.

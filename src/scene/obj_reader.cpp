@@ -43,9 +43,9 @@ struct Dropped {
 };
 
 // The statements rad uses; tinyobjloader parses every other one too (skin weights, lines, points,
-// curves), and fuzzing found undefined behaviour there: a `vw` joint id beyond int. They carry
+// curves), and has undefined behaviour there: a `vw` joint id beyond int. They carry
 // nothing a radiosity solve reads, so they are blanked out before parsing, in place (a copy of
-// the text was a tenth of an import), keeping every line where it was for the error messages.
+// the text would be a tenth of an import), keeping every line where it was for the error messages.
 // Returns what of the model's geometry that drops (points, lines, free-form curves and surfaces).
 std::vector<Dropped> blank_statements_rad_ignores(std::string& obj) {
   std::vector<Dropped> dropped = {{"p", "points (p)"},

@@ -271,8 +271,8 @@ TEST(CommandLine, TheOriginalsGfoOutputIsWrittenAsCoff) {
   fs::remove(out);
 }
 
-// Hostile input ends in one error, never a signal: 20,000 nested Assemblies overflowed the
-// parser's stack (SIGSEGV) before the nesting was bounded.
+// Hostile input ends in one error, never a signal: 20,000 nested Assemblies would overflow the
+// parser's stack (SIGSEGV) if the nesting were not bounded.
 TEST(CommandLine, TwentyThousandNestedAssembliesEndInOneError) {
   const fs::path des = fs::temp_directory_path() / "rad_test_deep.des";
   {

@@ -222,8 +222,8 @@ TEST_F(ModelFiles, BadPlyFilesEndInOneErrorWithoutAllocatingTheirCounts) {
         std::string("plyformat"),
         ply_header("ascii", 3, 1) + "0 0 0 1\n1 0 zero 1\n0 1 0 1\n3 0 1 2\n",
         std::string("ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n"),
-        // A second vertex element, without x, y and z (fuzzing: the faces were checked against
-        // its count and read the first one's columns beyond their end).
+        // A second vertex element, without x, y and z: the faces must be checked against the
+        // first one's count, or they read its columns beyond their end.
         std::string(
             "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
             "property float z\nelement vertex 3\nproperty float w\nelement face 1\n"

@@ -1,4 +1,4 @@
-// The trust issue's output-level agreement: every backend gives the same subdivision (the same
+// Agreement of the outputs (docs/trust.md): every backend gives the same subdivision (the same
 // vertices) and the same radiosity within 1e-5 of the largest, on every bundled scene, generated
 // scenes and randomised ones (boxes that touch and share faces, triangle soups), where rays
 // graze edges and vertices far more often than random rays do.

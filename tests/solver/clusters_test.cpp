@@ -179,8 +179,8 @@ TEST(Clusters, EveryShotConservesEnergyInAClosedScene) {
 namespace rad {
 namespace {
 
-// The furnace box cut 8 x 8: every point at E / (1 - rho) = 2 whatever the tessellation (issue
-// 12: the area-weighted mean within 0.5%).
+// The furnace box cut 8 x 8: every point at E / (1 - rho) = 2 whatever the tessellation (the
+// area-weighted mean within 0.5%).
 TEST(Clusters, TessellatedFurnaceKeepsEOverOneMinusRho) {
   SceneDescription d;
   testing::add_closed_box(d, Vec3(0.0f), Vec3(1.0f), Vec3(0.5f), Vec3(1.0f), 8);

@@ -58,7 +58,7 @@ TEST(Determinism, GridAndEmbreeAgreeToOnePartInAHundredThousand) {
   const auto embree = solve_cornell(BackendKind::Embree, 2);
   const auto grid = solve_cornell(BackendKind::Grid, 2);
   ASSERT_EQ(embree.size(), grid.size()) << "different subdivision";
-  // Agreement as the trust issue defines it: every vertex within 1e-5 of the largest radiosity.
+  // Backends agree when every vertex is within 1e-5 of the largest radiosity (docs/trust.md).
   // (A ray that passes within a micrometre of a block's edge may go either way in float; it
   // moves its vertex by a fraction of one sample's share.)
   float largest = 0, worst = 0;
