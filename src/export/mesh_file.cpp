@@ -32,7 +32,8 @@ void write_mesh_file(const std::string& path, const OutputMesh& mesh, const Mesh
   } else if (e == ".off" || e == ".gfo") {
     write_off(f.stream(), mesh, o.tone);
   } else if (e == ".obj") {
-    const std::string mtl = o.obj_name.empty() ? "" : write_obj_materials(o.obj_name, mesh);
+    const std::string mtl =
+        o.obj_name.empty() ? "" : write_obj_materials(o.obj_name, mesh, o.write_beside);
     write_obj(f.stream(), mesh, o.tone, mtl);
   } else {
     write_gltf(f.stream(), mesh, o.tone, e == ".glb");

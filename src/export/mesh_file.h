@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "export/obj_writer.h"
 #include "export/output_mesh.h"
 #include "export/tonemap.h"
 
@@ -16,6 +17,9 @@ struct MeshFileOptions {
   /// images after it and writes them beside it (write_obj_materials); empty, the OBJ is written
   /// alone, without texture coordinates (a download of one file).
   std::string obj_name;
+  /// OBJ only: how the MTL and images beside it are written (write_obj_materials); empty, each
+  /// appears on its own once all are written.
+  WriteBeside write_beside;
 };
 
 /// Throws rad::Error if rad cannot write files with this path's extension (checked before

@@ -57,15 +57,32 @@ void write_obj(std::ostream& out, const OutputMesh& m, const ToneMap& tm,
   out.write(b.data(), std::streamsize(b.size()));
 }
 
-std::string write_obj_materials(const std::string& obj_path, const OutputMesh& mesh) {
+std::string write_obj_materials(const std::string& obj_path, const OutputMesh& mesh,
+                                const WriteBeside& write_beside) {
   if (mesh.uv().empty()) return {};
   namespace fs = std::filesystem;
   const fs::path obj(obj_path);
   const std::string stem = obj.stem().string();
   const std::string mtl_name = stem + ".mtl";
+  // Without a caller's staging, every file is held under its temporary name until all are
+  // written, so a failure leaves none of them.
+  std::vector<std::unique_ptr<AtomicFile>> held;
+  auto write_file = [&](const std::string& name, const std::string& bytes) {
+    const std::string path = (obj.parent_path() / name).string();
+    auto write = [&](const std::string& to) {
+      AtomicFile f(to);
+      f.stream().write(bytes.data(), std::streamsize(bytes.size()));
+      f.commit();
+    };
+    if (write_beside) {
+      write_beside(path, write);
+    } else {
+      held.push_back(std::make_unique<AtomicFile>(path));
+      held.back()->stream().write(bytes.data(), std::streamsize(bytes.size()));
+    }
+  };
   std::vector<const TextureImage*> written;
   std::vector<std::string> file_of;  // per entry of `written`
-  std::vector<std::unique_ptr<AtomicFile>> files;
   fmt::memory_buffer b;
   auto it = std::back_inserter(b);
   fmt::format_to(it,
@@ -81,9 +98,7 @@ std::string write_obj_materials(const std::string& obj_path, const OutputMesh& m
     if (i == written.size()) {
       written.push_back(t.image.get());
       file_of.push_back(fmt::format("{}_texture{}.png", stem, k));
-      files.push_back(std::make_unique<AtomicFile>((obj.parent_path() / file_of.back()).string()));
-      const std::string png = encode_png(*t.image);
-      files.back()->stream().write(png.data(), std::streamsize(png.size()));
+      write_file(file_of.back(), encode_png(*t.image));
     }
     // OBJ can say clamp (both directions) or repeat; a mirrored repeat reads as repeat.
     const bool clamp = t.sampler.wrap_s == TextureWrap::ClampToEdge &&
@@ -91,10 +106,8 @@ std::string write_obj_materials(const std::string& obj_path, const OutputMesh& m
     fmt::format_to(it, "newmtl texture{}\nKd 1 1 1\nillum 0\nmap_Kd {}{}\n", k,
                    clamp ? "-clamp on " : "", file_of[i]);
   }
-  AtomicFile mtl((obj.parent_path() / mtl_name).string());
-  mtl.stream().write(b.data(), std::streamsize(b.size()));
-  for (auto& f : files) f->commit();
-  mtl.commit();
+  write_file(mtl_name, std::string(b.data(), b.size()));
+  for (auto& f : held) f->commit();
   return mtl_name;
 }
 

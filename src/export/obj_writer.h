@@ -2,6 +2,7 @@
 // the images beside it.
 #pragma once
 
+#include <functional>
 #include <ostream>
 #include <string>
 
@@ -22,6 +23,13 @@ void write_obj(std::ostream& out, const OutputMesh& mesh, const ToneMap& tm,
 /// and textureN, each Kd 1 1 1, textureN with map_Kd) and each image once as STEM_textureN.png
 /// (N: the first texture that shows it). Each file appears whole or not at all. Returns the
 /// MTL's file name, or "" without writing anything when the mesh has no texture.
-std::string write_obj_materials(const std::string& obj_path, const OutputMesh& mesh);
+/// `write_beside`, given, writes each of those files instead: it is called with the file's
+/// final path and a function that writes the file to the path it is handed (a caller staging a
+/// run's outputs, run/output_files.h, renames them into place with the OBJ). Empty, each file
+/// is written to a temporary name and renamed into place once all are written.
+using WriteBeside =
+    std::function<void(const std::string& path, const std::function<void(const std::string&)>&)>;
+std::string write_obj_materials(const std::string& obj_path, const OutputMesh& mesh,
+                                const WriteBeside& write_beside = {});
 
 }  // namespace rad

@@ -61,6 +61,12 @@ std::optional<Camera> write_outputs(const OutputMesh& mesh, const OutputOptions&
     MeshFileOptions mo;
     mo.ascii = o.ascii;
     mo.tone = tone;
+    // An OBJ names its MTL and images after its final name, and they are staged with it.
+    mo.obj_name = o.mesh;
+    mo.write_beside = [&](const std::string& path,
+                          const std::function<void(const std::string&)>& write) {
+      files.write(path, write);
+    };
     files.write(o.mesh, [&](const std::string& path) { write_mesh_file(path, mesh, mo); });
   }
   if (o.images.empty()) return std::nullopt;

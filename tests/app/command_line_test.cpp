@@ -18,6 +18,7 @@
 #include "core/error.h"
 #include "export/camera.h"
 #include "export/false_colour.h"
+#include "export/texture_png.h"
 #include "export/tonemap.h"
 #include "run/write_outputs.h"
 
@@ -426,6 +427,54 @@ TEST(CommandLine, SolvesAnObjModelWhoseLampIsNamedByEmit) {
   r = run_rad("-q --max-shots 3 --emit 'La*=5' " + obj + " " + ply);
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(read_file(ply).rfind("ply\n", 0), 0u);
+  fs::remove_all(dir);
+}
+
+// A textured OBJ solved to OBJ keeps its texture: the OBJ has coordinates and names its MTL,
+// which names the image written beside it, all of them staged with the run's other outputs.
+TEST(CommandLine, TexturedModelSolvedToObjWritesItsMtlAndImagesBesideIt) {
+  const fs::path dir = fs::temp_directory_path() / ("rad_test_obj_uv_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "out");
+  rad::TextureImage checker;
+  checker.levels.resize(1);
+  checker.levels[0].width = checker.levels[0].height = 4;
+  for (int t = 0; t < 16; ++t) {
+    const float c = (t % 2 + t / 4) % 2 ? 0.8f : 0.1f;
+    checker.levels[0].texels.push_back(rad::Vec4(c, c, c, 1.0f));
+  }
+  std::ofstream(dir / "floor.png", std::ios::binary) << rad::encode_png(checker);
+  std::ofstream(dir / "box.mtl") << "newmtl Floor\nKd 1 1 1\nmap_Kd floor.png\n"
+                                    "newmtl Lamp\nKd 1 0.9 0.8\n";
+  std::ofstream(dir / "box.obj")
+      << "mtllib box.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0.4 0.9 0.4\nv 0.6 0.9 0.4\n"
+         "v 0.6 0.9 0.6\nv 0.4 0.9 0.6\nvt 0 0\nvt 2 0\nvt 2 2\nvt 0 2\no floor\nusemtl Floor\n"
+         "f 1/1 4/4 3/3 2/2\no lamp\nusemtl Lamp\nf 5 6 7 8\n";
+  const fs::path out = dir / "out" / "lit.obj";
+  const RadRun r =
+      run_rad("-q --max-shots 3 --emit 'La*=5' " + (dir / "box.obj").string() + " " + out.string() +
+              " --image " + (dir / "out" / "lit.png").string() + " --size 16x16");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string obj = read_file(out);
+  EXPECT_NE(obj.find("mtllib lit.mtl\n"), std::string::npos) << obj.substr(0, 400);
+  EXPECT_NE(obj.find("\nvt "), std::string::npos);
+  EXPECT_NE(obj.find("usemtl texture0\n"), std::string::npos);
+  const std::string mtl = read_file(dir / "out" / "lit.mtl");
+  EXPECT_NE(mtl.find("map_Kd lit_texture0.png"), std::string::npos) << mtl;
+  int w = 0, h = 0, n = 0;
+  const std::string png = read_file(dir / "out" / "lit_texture0.png");
+  unsigned char* texels = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(png.data()),
+                                                int(png.size()), &w, &h, &n, 4);
+  ASSERT_NE(texels, nullptr) << "the texture is a PNG";
+  EXPECT_EQ(w, 4);
+  EXPECT_EQ(h, 4);
+  stbi_image_free(texels);
+  // Exactly the OBJ, its MTL, its image and the render; no temporaries left.
+  std::vector<std::string> files;
+  for (const auto& e : fs::directory_iterator(dir / "out"))
+    files.push_back(e.path().filename().string());
+  std::sort(files.begin(), files.end());
+  EXPECT_EQ(files, (std::vector<std::string>{"lit.mtl", "lit.obj", "lit.png", "lit_texture0.png"}));
   fs::remove_all(dir);
 }
 
