@@ -4,7 +4,9 @@
 // replaces that loader below with its own decoding into linear colour, scene/texture.h).
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
@@ -44,8 +46,9 @@ bool load_image(tinygltf::Image* image, const int index, std::string*, std::stri
     if (std::shared_ptr<const TextureImage> t = decode_texture(bytes, size_t(size), name)) {
       c->images[index] = std::move(t);
     } else if (warn) {
-      *warn +=
-          "image " + std::to_string(index) + " cannot be decoded; its material uses its factor\n";
+      *warn += (name == image->uri ? "the image " : "") + name +
+               " cannot be decoded (not a PNG, JPEG or other image stb_image reads, or more "
+               "than 64 million pixels); its material uses its factor\n";
     }
   }
   image->width = image->height = 1;
@@ -447,7 +450,27 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
   if (const std::string why = unsupported(g.asset.version, g.extensionsRequired); !why.empty()) {
     fail(path, why);
   }
-  if (!warn.empty()) rad::warn(SourceLoc{path}, warn.substr(0, warn.find('\n')));
+  // Every line tinygltf and the image loader wrote (a missing image adds two), each once.
+  std::vector<std::string_view> said;
+  for (size_t at = 0; at < warn.size();) {
+    const size_t end = std::min(warn.find('\n', at), warn.size());
+    const std::string_view line = std::string_view(warn).substr(at, end - at);
+    at = end + 1;
+    if (line.find_first_not_of(" \t\r") == std::string_view::npos) continue;
+    if (std::find(said.begin(), said.end(), line) != said.end()) continue;
+    said.push_back(line);
+    // tinygltf follows a missing image's "File not found" with a line naming it by index.
+    constexpr std::string_view kFailed = "Failed to load external 'uri' for image[";
+    if (line.substr(0, kFailed.size()) == kFailed) {
+      const size_t image = size_t(std::atoll(std::string(line.substr(kFailed.size())).c_str()));
+      if (image < g.images.size()) {
+        rad::warn(SourceLoc{path}, "the image " + g.images[image].uri +
+                                       " is not read; its material uses its factor");
+        continue;
+      }
+    }
+    rad::warn(SourceLoc{path}, std::string(line));
+  }
   // Any other required extension changes how materials look, not where surfaces are: the file
   // is read without it, once said.
   for (const std::string& e : g.extensionsRequired) {

@@ -117,8 +117,10 @@ TEST(Texture, WhatIsNotAnImageIsNoTexture) {
 
 // A unit quad with texture coordinates, its material's base texture (sampler: clamp in s,
 // nearest) read through KHR_texture_transform.
+// `image` is the PNG's bytes, embedded; with `uri` the image is that external file instead.
 std::string textured_quad_gltf(const std::string& image, bool double_sided = false,
-                               const std::string& alpha_mode = "OPAQUE") {
+                               const std::string& alpha_mode = "OPAQUE",
+                               const std::string& uri = "") {
   std::string buf;
   const float p[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
   buf.append(reinterpret_cast<const char*>(p), sizeof p);
@@ -138,8 +140,8 @@ std::string textured_quad_gltf(const std::string& image, bool double_sided = fal
           {"offset": [0, 1], "rotation": 1.5707963267948966, "scale": [0.5, 0.5]}}}}}],
     "textures": [{"source": 0, "sampler": 0}],
     "samplers": [{"wrapS": 33071, "wrapT": 33648, "magFilter": 9728}],
-    "images": [{"uri": "data:image/png;base64,)" +
-         testing::base64(image) + R"("}],
+    "images": [{"uri": ")" +
+         (uri.empty() ? "data:image/png;base64," + testing::base64(image) : uri) + R"("}],
     "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
                    "min": [0, 0, 0], "max": [1, 1, 0]},
                   {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
@@ -180,6 +182,49 @@ TEST(TextureCoordinates, AnUndecodableGltfImageLeavesTheFactorAlone) {
   EXPECT_EQ(m.materials[0].reflectance.x, 0.5f);
   EXPECT_EQ(m.textures.unread, 1u);
   EXPECT_TRUE(m.groups[0].triangle_uvs.empty()) << "coordinates of no texture are not kept";
+}
+
+size_t count(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST(TextureCoordinates, AMissingOrUndecodableExternalGltfImageIsWarnedByItsFileName) {
+  const fs::path dir = fs::temp_directory_path() / ("rad_gltf_image_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "garbled.png", std::ios::binary) << "not an image at all";
+  ::testing::internal::CaptureStderr();
+  const Model missing =
+      parse_gltf(textured_quad_gltf("", false, "OPAQUE", "gone.png"), "quad.gltf", dir.string());
+  std::string warned = ::testing::internal::GetCapturedStderr();
+  EXPECT_FALSE(missing.materials[0].base_texture);
+  EXPECT_NE(warned.find("quad.gltf: warning: File not found : gone.png"), std::string::npos)
+      << warned;
+  EXPECT_NE(warned.find("quad.gltf: warning: the image gone.png is not read; its material uses "
+                        "its factor"),
+            std::string::npos)
+      << "every line of tinygltf's warnings: " << warned;
+  EXPECT_EQ(count(warned, "warning"), 2u) << warned;
+
+  ::testing::internal::CaptureStderr();
+  const Model garbled =
+      parse_gltf(textured_quad_gltf("", false, "OPAQUE", "garbled.png"), "quad.gltf", dir.string());
+  warned = ::testing::internal::GetCapturedStderr();
+  fs::remove_all(dir);
+  EXPECT_FALSE(garbled.materials[0].base_texture);
+  EXPECT_EQ(garbled.textures.unread, 1u);
+  EXPECT_NE(warned.find("quad.gltf: warning: the image garbled.png cannot be decoded"),
+            std::string::npos)
+      << warned;
+  EXPECT_EQ(count(warned, "warning"), 1u) << warned;
+
+  // An embedded one is named by its index and the file.
+  ::testing::internal::CaptureStderr();
+  parse_gltf(textured_quad_gltf("not an image"), "quad.gltf", "");
+  warned = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(warned.find("warning: image 0 of quad.gltf cannot be decoded"), std::string::npos)
+      << warned;
 }
 
 TEST(TextureCoordinates, ObjTurnsVtUpsideDownToTheImagesRows) {
