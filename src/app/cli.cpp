@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <functional>
 #include <iostream>
+#include <map>
 #include <memory>
 
 #include "core/error.h"
@@ -42,6 +43,31 @@ void parse_shard(const std::string& text, int* index, int* count) {
 }
 
 namespace {
+
+// Checks of an option's text that say what was expected ("--roulette: expects a number, 0 or
+// more, got 'five'"), in place of CLI11's, which print the range's bounds in full.
+CLI::Validator non_negative() {
+  return CLI::Validator(
+      [](const std::string& text) -> std::string {
+        double v = 0;
+        char end = 0;
+        if (std::sscanf(text.c_str(), "%lf%c", &v, &end) == 1 && std::isfinite(v) && v >= 0) {
+          return {};
+        }
+        return fmt::format("expects a number, 0 or more, got '{}'", text);
+      },
+      "");
+}
+CLI::Validator whole_number(long lo, long hi) {
+  return CLI::Validator(
+      [lo, hi](const std::string& text) -> std::string {
+        long v = 0;
+        char end = 0;
+        if (std::sscanf(text.c_str(), "%ld%c", &v, &end) == 1 && v >= lo && v <= hi) return {};
+        return fmt::format("expects a whole number from {} to {}, got '{}'", lo, hi, text);
+      },
+      "");
+}
 
 const std::string kStageHelp = fmt::format(
     "For a model: set it on a grey floor (reflectance {}) under a soft area light scaled to its "
@@ -124,7 +150,8 @@ struct Solving {
     app.add_option("--backend", backend, "Shadow-ray backend: embree, grid or brute")
         ->capture_default_str();
     app.add_flag("!--no-packets", r.packets, "Trace shadow rays one at a time (Embree)");
-    app.add_option("--threads", r.threads, "Worker threads (0 = all cores)")->capture_default_str();
+    app.add_option("--threads", r.threads, "Worker threads, 0 for all cores")
+        ->capture_default_str();
     SolverOptions& o = r.solver;
     app.add_flag("!--no-shadows", o.shadows, "No shadow rays: every visibility term is 1");
     app.add_option("--min-size", o.min_size,
@@ -146,8 +173,7 @@ struct Solving {
         ->capture_default_str();
     app.add_option("--form-factor", method,
                    "analytic (the exact unoccluded form factor times the visibility the samples "
-                   "see) or samples (as the original: each sample a small disc, their form "
-                   "factors summed)")
+                   "see) or samples (each sample a small disc, their form factors summed)")
         ->capture_default_str();
     app.add_option("--threshold", o.subdivision_threshold,
                    "Subdivision limit: split where vertices differ by more than this fraction of "
@@ -162,13 +188,13 @@ struct Solving {
                    "fraction of the radiosity scale gathers with probability bound / level, its "
                    "gain divided by it (unbiased; far receivers cost less); 0: off")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(non_negative());
     app.add_option("--penumbra-rays", o.penumbra_rays,
                    "Where a vertex's shadow rays to a lamp's major shot disagree (a penumbra), or "
                    "its rays to the lamp's corners do, this many more per sample, to points of "
-                   "its stratum that differ from vertex to vertex, and their mean (0: off)")
+                   "its stratum that differ from vertex to vertex, and their mean; 0: off")
         ->capture_default_str()
-        ->check(CLI::Range(0, 64));
+        ->check(whole_number(0, 64));
     app.add_option("--converge", o.converge,
                    "Stop when unshot energy <= this fraction of the emitted energy")
         ->capture_default_str();
@@ -177,7 +203,7 @@ struct Solving {
     if (time_limit) app.add_option("--time-limit", o.time_limit, "Stop after this many seconds");
     app.add_option("--kept-rays", kept_rays_mib,
                    "MiB for shadow-ray answers kept between shots of the same cluster, which "
-                   "casts the same rays again (0: trace every ray every time; same result)")
+                   "casts the same rays again; 0 traces every ray every time, with the same result")
         ->capture_default_str();
     app.add_flag("!--no-culling", o.occlusion_culling,
                  "No occlusion culling (on by default: receivers that a flat occluder, a wall, "
@@ -259,7 +285,7 @@ struct Showing {
           ->capture_default_str();
       app.add_option("--pixel-samples", o.pixel_samples,
                      "Final render: samples per pixel along each side (3: 9 per pixel)")
-          ->check(CLI::Range(1, 16))
+          ->check(whole_number(1, 16))
           ->capture_default_str();
       app.add_option("--background", background,
                      "Final render: what pixels show where nothing is seen: a linear colour R,G,B "
@@ -477,11 +503,128 @@ struct SolvingMode {
   }
 };
 
+// What an option's value is called in the help and the man page: what it looks like, or what it
+// is (a number, a fraction of the radiosity scale, a file). Options not named here are called by
+// their kind: N (a whole number), X (a number) or TEXT.
+const std::map<std::string, std::string> kValueLabels = {
+    {"--backend", "embree|grid|brute"},
+    {"--cross-check", "BACKEND"},
+    {"--form-factor", "analytic|samples"},
+    {"--min-size", "SIZE"},
+    {"--max-size", "SIZE"},
+    {"--threshold", "FRACTION"},
+    {"--intensity-cut", "FRACTION"},
+    {"--roulette", "FRACTION"},
+    {"--converge", "FRACTION"},
+    {"--time-limit", "SECONDS"},
+    {"--kept-rays", "MIB"},
+    {"--tonemap", "clamp|reinhard|aces"},
+    {"--exposure", "STOPS"},
+    {"--image", "FILE"},
+    {"--camera", "EX,EY,EZ,TX,TY,TZ[,FOV]"},
+    {"--size", "WxH"},
+    {"--render", "final|preview"},
+    {"--background", "R,G,B|transparent"},
+    {"--false-colour", "lux"},
+    {"--false-colour-max", "LUX"},
+    {"--false-colour-log", "DECADES"},
+    {"--emit", "PATTERN=VALUE"},
+    {"--light-group", "PATTERN=NAME"},
+    {"--sun", "[ELEVATION,AZIMUTH]"},
+    {"--hierarchy", "file|auto|flat"},
+    {"--unit", "METRES"},
+    {"--max-memory", "SIZE"},
+    {"--stats-json", "FILE"},
+    {"--checkpoint", "FILE"},
+    {"--checkpoint-every", "SECONDS"},
+    {"--formats", "EXT,..."},
+    {"--shard", "I/N|slurm"},
+    {"--port", "PORT"},
+    {"--host", "ADDRESS"},
+    {"--output", "FILE"},
+};
+
+// The kind of value CLI11 converts an option's text to: INT, UINT, FLOAT or TEXT (without the
+// validators it appends: "FLOAT:NONNEGATIVE").
+std::string value_kind(const CLI::Option& o) {
+  const std::string t = o.get_type_name();
+  return t.substr(0, t.find(':'));
+}
+
+// "-q,--quiet", "--no-packets": the names alone, without CLI11's "{false}" for a negated flag.
+std::string option_names(const CLI::Option& o) {
+  std::string names;
+  for (const std::string& s : o.get_snames()) names += (names.empty() ? "-" : ",-") + s;
+  for (const std::string& l : o.get_lnames()) names += (names.empty() ? "--" : ",--") + l;
+  return names;
+}
+
+// What follows an option's name: its value's label, or nothing for a flag.
+std::string value_label(const CLI::Option& o) {
+  if (o.get_type_size() == 0) return {};
+  if (!o.get_option_text().empty()) return o.get_option_text();
+  const std::string kind = value_kind(o);
+  return kind == "INT" || kind == "UINT" ? "N" : kind == "FLOAT" ? "X" : kind;
+}
+
+// The description, with the default CLI11 captured from the bound value.
+std::string option_description(const CLI::Option& o) {
+  std::string d = o.get_description();
+  if (o.get_type_size() != 0 && !o.get_default_str().empty()) {
+    d += " (default " + o.get_default_str() + ")";
+  }
+  return d;
+}
+
+// `text` broken into lines of at most `width` characters at spaces, each after `indent`
+// spaces but the first (which continues whatever precedes it).
+std::string wrap(const std::string& text, size_t indent, size_t width) {
+  std::string out, line;
+  size_t at = 0;
+  while (at < text.size()) {
+    const size_t space = std::min(text.find(' ', at), text.size());
+    const std::string word = text.substr(at, space - at);
+    if (!line.empty() && indent + line.size() + 1 + word.size() > width) {
+      out += line + "\n" + std::string(indent, ' ');
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+    at = space + 1;
+  }
+  return out + line;
+}
+
+// CLI11's help in rad's words: `--threads N`, the default at the end of the description, none
+// of CLI11's notation (`FLOAT:NONNEGATIVE=0.01`, `INT:INT in [0 - 64]`, `{false}`), and the
+// descriptions wrapped to a terminal's width.
+class HelpFormatter : public CLI::Formatter {
+ public:
+  std::string make_option_name(const CLI::Option* o, bool positional) const override {
+    return positional ? o->get_name(true, false) : option_names(*o);
+  }
+  std::string make_option_opts(const CLI::Option* o) const override {
+    const std::string label = value_label(*o);
+    return label.empty() ? "" : " " + label;
+  }
+  std::string make_option_desc(const CLI::Option* o) const override {
+    return option_description(*o);
+  }
+  std::string make_option(const CLI::Option* o, bool positional) const override {
+    constexpr size_t kColumn = 30, kWidth = 100;
+    std::string name = "  " + make_option_name(o, positional);
+    if (!positional) name += make_option_opts(o);
+    name += name.size() + 1 < kColumn ? std::string(kColumn - name.size(), ' ')
+                                      : "\n" + std::string(kColumn, ' ');
+    return name + wrap(make_option_desc(o), kColumn, kWidth) + "\n";
+  }
+};
+
 // One mode's command line: the options (bound to `line` and to what `keep` holds), and what
 // is checked and filled in after parsing.
 struct ModeParser {
   explicit ModeParser(const std::string& description, const std::string& name)
       : app(description, name) {
+    app.formatter(std::make_shared<HelpFormatter>());
     app.footer(exit_status_help(name));
     app.set_version_flag("--version", std::string("rad ") + rad_version(),
                          "Print rad's version and exit");
@@ -577,9 +720,11 @@ void define_serve(ModeParser& p) {
   CommandLine& c = p.line;
   c.mode = Mode::Serve;
   CLI::App& app = p.app;
-  app.add_option("SCENE", c.job.input.path, "Scene: a description (.des) or a model")->required();
-  app.add_option("--port", c.server.port, "TCP port (0: any free port)")
-      ->check(CLI::Range(0, 65535))
+  app.add_option("SCENE", c.job.input.path,
+                 "Scene: a description (.des) or a model (.obj, .ply, .gltf, .glb)")
+      ->required();
+  app.add_option("--port", c.server.port, "TCP port, 0 for any free port")
+      ->check(whole_number(0, 65535))
       ->capture_default_str();
   app.add_option("--host", c.server.host,
                  "Address to listen on (other than loopback exposes the scene and its edits to "
@@ -596,7 +741,8 @@ void define_serve(ModeParser& p) {
 void define_solve(ModeParser& p) {
   CommandLine& c = p.line;
   CLI::App& app = p.app;
-  app.add_option("SCENE", c.job.input.path, "Scene: a description (.des) or a model (.obj, .ply)")
+  app.add_option("SCENE", c.job.input.path,
+                 "Scene: a description (.des) or a model (.obj, .ply, .gltf, .glb)")
       ->required();
   app.add_option("OUTPUT", c.job.outputs.mesh,
                  "Output mesh (.ply, .off, .gfo (COFF), .obj, .gltf or .glb)");
@@ -613,9 +759,9 @@ void define_solve(ModeParser& p) {
                  "Save the solver state to this file (every --checkpoint-every seconds, when "
                  "stopped by Ctrl-C or SIGTERM, and at the end); resume from it when it exists");
   app.add_option("--checkpoint-every", c.job.checkpoint_every,
-                 "Seconds between checkpoints (0: after every shot)")
+                 "Seconds between checkpoints, 0 for after every shot")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative());
   p.apply = [&solving, &check, &cross_check](CommandLine& r) {
     solving.apply(r);
     if (check) {
@@ -662,7 +808,29 @@ const ModeDefinition kModes[] = {
 std::unique_ptr<ModeParser> make_parser(const ModeDefinition& mode) {
   auto p = std::make_unique<ModeParser>(mode.help, mode.title);
   mode.define(*p);
+  for (CLI::Option* o : p->app.get_options()) {
+    const auto label = kValueLabels.find(
+        "--" + (o->get_lnames().empty() ? std::string() : o->get_lnames().front()));
+    if (label != kValueLabels.end()) o->option_text(label->second);
+  }
   return p;
+}
+
+// "--max-shots expects a whole number, got 'five'" for CLI11's "Could not convert: --max-shots =
+// five"; other messages as they are.
+std::string conversion_message(const ModeParser& p, const std::string& what) {
+  const std::string prefix = "Could not convert: ";
+  const size_t equals = what.find(" = ");
+  if (what.rfind(prefix, 0) != 0 || equals == std::string::npos) return what;
+  const std::string name = what.substr(prefix.size(), equals - prefix.size());
+  const std::string value = what.substr(equals + 3);
+  const CLI::Option* o = p.app.get_option_no_throw(name);
+  const std::string kind = o ? value_kind(*o) : "";
+  const char* expected = kind == "INT"     ? "a whole number"
+                         : kind == "UINT"  ? "a whole number, 0 or more"
+                         : kind == "FLOAT" ? "a number"
+                                           : "another value";
+  return fmt::format("{} expects {}, got '{}'", name, expected, value);
 }
 
 // The first argument CLI11 left over that looks like an option ("--max-shot", "--max-shot=5",
@@ -723,6 +891,8 @@ std::optional<CommandLine> parse_mode(const ModeDefinition& mode, std::vector<st
     return std::nullopt;
   } catch (const CLI::ExtrasError& e) {
     what = e.what(), extras = true;
+  } catch (const CLI::ConversionError& e) {
+    what = conversion_message(*p, e.what());
   } catch (const CLI::ParseError& e) {
     what = e.what();
   } catch (const Error& e) {

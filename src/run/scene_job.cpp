@@ -300,7 +300,7 @@ SceneJobResult run_scene_job(const RunOptions& run, const SceneJob& asked, Ranks
     say(job.outputs.mesh + ": .gfo is the original's output name; writing Geomview COFF there");
   }
 
-  say("Reading description file...");
+  say(is_model_file(job.input.path) ? "Reading model file..." : "Reading description file...");
   const Hierarchy hierarchy = load_scene(job.input);
   require_light(hierarchy, job.input, run.solver);
   if (hierarchy.model && hierarchy.model->stage) {
