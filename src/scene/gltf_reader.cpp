@@ -310,6 +310,11 @@ ModelMaterial material_of(const tinygltf::Material& g, const Context& c, const t
   return mat;
 }
 
+// Extensions rad reads (the rest it ignores, with a warning).
+constexpr std::string_view kReadExtensions[] = {
+    "KHR_texture_transform", "KHR_materials_emissive_strength",
+    "KHR_materials_pbrSpecularGlossiness", "KHR_lights_punctual"};
+
 // Extensions a file may require that change where its vertices are: without them rad would
 // read wrong or no geometry.
 constexpr const char* kGeometryExtensions[] = {"KHR_draco_mesh_compression",
@@ -480,6 +485,47 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
                                    "colour and emission alone");
   }
 
+  // Used, not required: the file reads without them, and a reader that ignores them shows less
+  // (a clearcoat, a transmission, a sheen).
+  std::string ignored;
+  for (const std::string& e : g.extensionsUsed) {
+    const bool read = std::find(std::begin(kReadExtensions), std::end(kReadExtensions), e) !=
+                      std::end(kReadExtensions);
+    const bool warned = std::find(g.extensionsRequired.begin(), g.extensionsRequired.end(), e) !=
+                        g.extensionsRequired.end();
+    if (!read && !warned) ignored += (ignored.empty() ? "" : ", ") + e;
+  }
+  if (!ignored.empty()) {
+    rad::warn(SourceLoc{path}, "the extensions " + ignored.substr(0, 400) +
+                                   " are used but rad ignores them: materials take their base "
+                                   "colour and emission alone, and reflect diffusely");
+  }
+  if (!g.skins.empty()) {
+    rad::warn(SourceLoc{path}, std::to_string(g.skins.size()) +
+                                   " skins ignored: skinned meshes are placed by their nodes, "
+                                   "in the pose their vertices were written in");
+  }
+  if (!g.animations.empty()) {
+    rad::warn(SourceLoc{path}, std::to_string(g.animations.size()) +
+                                   " animations ignored: the scene is read as its nodes place "
+                                   "it, unanimated");
+  }
+  // BLEND read as a cut-out: said once, for every material that asks for it.
+  size_t blended = 0;
+  std::string first_blended;
+  for (size_t k = 0; k < g.materials.size(); ++k) {
+    if (g.materials[k].alphaMode != "BLEND" || blended++ > 0) continue;
+    first_blended = g.materials[k].name.empty() ? "material " + std::to_string(k)
+                                                : "material '" + g.materials[k].name + "'";
+  }
+  if (blended > 0) {
+    rad::warn(SourceLoc{path},
+              first_blended +
+                  (blended > 1 ? " (and " + std::to_string(blended - 1) + " more)" : "") + " has" +
+                  " alphaMode BLEND, which rad cannot blend: it is read as MASK with "
+                  "alphaCutoff 0.5, texels less than half opaque holes and the rest opaque");
+  }
+
   Model m;
   m.path = path;
   std::vector<TextureCoordinates> coordinates(g.materials.size());
@@ -513,6 +559,9 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
   }
   size_t meshes_placed = 0;
   size_t visits = 0;
+  size_t uvless = 0;             // triangles of a textured material without its TEXCOORD_n
+  uint32_t uvless_material = 0;  // the first's
+  bool coloured = false;         // COLOR_0, which rad ignores
   bool range_warned = false;
   while (!stack.empty()) {
     const Item it = stack.back();
@@ -600,6 +649,13 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
           }
         }
       }
+      coloured |= p.attributes.count("COLOR_0") > 0;
+      if (uv_map && !uvs) {
+        if (uvless == 0) uvless_material = material;
+        uvless +=
+            (mode == TINYGLTF_MODE_TRIANGLES ? index.size() / 3
+                                             : index.size() - std::min<size_t>(index.size(), 2));
+      }
       const double uv_unit = !uvs                                                       ? 1.0
                              : uvs->component == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE  ? 255.0
                              : uvs->component == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 65535.0
@@ -655,6 +711,20 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
     }
     fail(path, meshes_placed == 0 ? "has no triangles: its scene places no mesh"
                                   : "has no triangles: its meshes have no triangle primitives");
+  }
+  if (uvless > 0) {
+    const ModelMaterial& first = m.materials[uvless_material];
+    rad::warn(SourceLoc{path}, std::to_string(uvless) + " triangles of textured material '" +
+                                   first.name +
+                                   "' (the first) have no texture coordinates (TEXCOORD_" +
+                                   std::to_string(coordinates[uvless_material].set) +
+                                   "): they reflect the texture's mean colour" +
+                                   (first.cutout ? " and are not cut out" : ""));
+  }
+  if (coloured) {
+    rad::warn(SourceLoc{path},
+              "the vertices' colours (COLOR_0) are ignored: triangles take their material's "
+              "base colour");
   }
   if (skipped > 0) {
     rad::warn(SourceLoc{path}, std::to_string(skipped) +

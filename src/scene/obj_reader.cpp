@@ -114,6 +114,21 @@ std::optional<fs::path> entry_in(const fs::path& folder, const std::string& name
   return std::nullopt;
 }
 
+// A property of materials that rad drops, said once per file for all the materials that
+// have it.
+struct Unused {
+  size_t count = 0;
+  std::string first;
+  void add(const std::string& material) {
+    if (count++ == 0) first = material;
+  }
+  // "material 'A'" or "material 'A' (and 2 more)".
+  std::string materials() const {
+    return "material '" + first + "'" +
+           (count > 1 ? " (and " + std::to_string(count - 1) + " more)" : "");
+  }
+};
+
 }  // namespace
 
 std::optional<std::string> find_texture(const std::string& folder, std::string name) {
@@ -219,7 +234,15 @@ Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& p
   std::map<std::string, std::string> unread;
   // Each image file decoded once, however many materials name it.
   std::map<std::string, std::shared_ptr<const TextureImage>> decoded;
+  Unused transparent, bumpy, specular;  // what the materials lose
   for (const tinyobj::material_t& t : reader.GetMaterials()) {
+    if (t.dissolve < 1.0f) transparent.add(t.name);
+    if (!t.bump_texname.empty() || !t.normal_texname.empty()) bumpy.add(t.name);
+    // Ks 0 and no map_Ks (the defaults) leave nothing specular, whatever Ns says.
+    if (t.specular[0] > 0.0f || t.specular[1] > 0.0f || t.specular[2] > 0.0f ||
+        !t.specular_texname.empty()) {
+      specular.add(t.name);
+    }
     ModelMaterial mat;
     mat.name = t.name;
     mat.loc = SourceLoc{path};
@@ -295,6 +318,25 @@ Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& p
     warn(SourceLoc{path},
          "cannot read the texture " + texture + "; material " + names + " takes its colour alone");
   }
+  if (transparent.count > 0) {
+    warn(SourceLoc{path}, transparent.materials() +
+                              " is partly transparent (d or Tr), which rad ignores: the surface "
+                              "is opaque; for holes, cut it out with an alpha texture (map_d)");
+  }
+  if (bumpy.count > 0) {
+    warn(SourceLoc{path}, bumpy.materials() +
+                              " has a bump or normal map (map_Bump, bump or norm), which rad "
+                              "ignores: the surface is lit flat");
+  }
+  if (specular.count > 0) {
+    warn(SourceLoc{path}, specular.materials() +
+                              " has a specular reflection (Ks, Ns, map_Ks), which rad ignores: "
+                              "surfaces reflect diffusely, by Kd alone");
+  }
+  if (!attrib.colors.empty()) {
+    warn(SourceLoc{path},
+         "the vertices' colours (v x y z r g b) are ignored: faces take their material's Kd");
+  }
   const uint32_t fallback = uint32_t(m.materials.size());
   bool fallback_used = false;
   const size_t nt = attrib.texcoords.size() / 2;
@@ -356,7 +398,8 @@ Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& p
     warn(SourceLoc{path}, std::to_string(uvless_faces) + " faces of textured material '" +
                               m.materials[uvless_material].name +
                               "' (the first) have no texture coordinates (vt): they reflect "
-                              "the texture's mean colour");
+                              "the texture's mean colour" +
+                              (m.materials[uvless_material].cutout ? " and are not cut out" : ""));
   }
   if (fallback_used)
     m.materials.push_back({"default", Vec3(0.8f), Vec3(0.0f), {}, {}, SourceLoc{path}});

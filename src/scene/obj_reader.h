@@ -20,7 +20,9 @@ using MaterialFolders = std::map<std::string, std::string>;
 /// `material_folders`, else `texture_folder`, each file decoded once) becomes the material's
 /// base texture, read through the faces' `vt` coordinates, when `texture_folder` is not empty
 /// and the image can be read (stb_image); one warning per texture that cannot. Points, lines and
-/// free-form curves and surfaces are dropped with one warning per kind. Throws rad::Error at
+/// free-form curves and surfaces are dropped with one warning per kind, and so are what rad
+/// does not render: transparency (d, Tr), bump and normal maps, specular reflection, vertex
+/// colours (one warning each, naming the first material that has it). Throws rad::Error at
 /// path:line for malformed input, non-finite coordinates and bad indices, and at path when no face
 /// is left.
 Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& path,

@@ -313,6 +313,12 @@ Model parse_ply(std::string_view bytes, const std::string& path) {
                                      : "has no faces of three or more vertices");
   }
   m.groups.push_back(std::move(g));
+  for (const char* colour : {"red", "diffuse_red", "r"}) {
+    if (!d.vertex.contains(colour)) continue;
+    warn(SourceLoc{path}, std::string("the vertices' colours (") + colour +
+                              ", ...) are ignored: the model reflects one grey, 0.8");
+    break;
+  }
   return m;
 }
 

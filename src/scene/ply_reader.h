@@ -34,7 +34,7 @@ struct PlyData {
 PlyData parse_ply_data(std::string_view bytes, const std::string& path);
 
 /// The model of a PLY file: its faces fan-split, in one group with one material (grey 0.8),
-/// both named after the file.
+/// both named after the file; vertex colours are ignored, with a warning.
 Model parse_ply(std::string_view bytes, const std::string& path);
 
 Model read_ply_file(const std::string& path, const SourceLoc& requested_at);

@@ -56,9 +56,9 @@ TEST_F(ModelLeniency, CheckSummarisesAModelWithoutLampsAndWarnsHowToLightIt) {
   ModelOptions check;
   check.require_emission = false;
   check.warn_unlit = true;
-  testing::internal::CaptureStderr();
+  ::testing::internal::CaptureStderr();
   const SceneDescription d = model_to_scene(m, check);
-  const std::string warned = testing::internal::GetCapturedStderr();
+  const std::string warned = ::testing::internal::GetCapturedStderr();
   EXPECT_NE(warned.find("warning: nothing in this model emits light"), std::string::npos) << warned;
   EXPECT_NE(warned.find("--emit 'Wall=10'"), std::string::npos) << "its own material as example";
   EXPECT_NE(warned.find("Floor"), std::string::npos) << warned;
@@ -70,9 +70,9 @@ TEST_F(ModelLeniency, CheckSummarisesAModelWithoutLampsAndWarnsHowToLightIt) {
   // rad convert takes it silently.
   ModelOptions convert;
   convert.require_emission = false;
-  testing::internal::CaptureStderr();
+  ::testing::internal::CaptureStderr();
   model_to_scene(m, convert);
-  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
 }
 
 const char* kPlyBody =
@@ -83,9 +83,9 @@ const char* kPlyBody =
 TEST_F(ModelLeniency, PlyCreditLineBeforeTheElementsIsSkippedWithAWarningNamingIt) {
   const std::string ply = std::string("ply\nformat ascii 1.0\nobj_info scanned\n") +
                           "Created by Blender3D 247 - www.blender.org, source file: \n" + kPlyBody;
-  testing::internal::CaptureStderr();
+  ::testing::internal::CaptureStderr();
   const Model m = parse_ply(ply, "wuson.ply");
-  const std::string warned = testing::internal::GetCapturedStderr();
+  const std::string warned = ::testing::internal::GetCapturedStderr();
   EXPECT_EQ(m.triangle_count(), 1u);
   EXPECT_NE(warned.find("wuson.ply:4:1: warning: header line 'Created by Blender3D 247"),
             std::string::npos)
@@ -163,14 +163,14 @@ TEST_F(ModelLeniency, ObjTexturePathsWithBackslashesAndOtherCaseAreFoundBesideTh
         "newmtl Floor\nKd 0.5 0.5 0.5\nmap_Kd maps\\wood.png\n"
         "newmtl Far\nKd 0.5 0.5 0.5\nmap_Kd C:\\Users\\someone\\textures\\elsewhere.png\n");
   write("mats/stone.mtl", "newmtl Stone\nKd 0.5 0.5 0.5\nmap_Kd stone.png\n");
-  testing::internal::CaptureStderr();
+  ::testing::internal::CaptureStderr();
   const Model m =
       read_obj_file(write("walls.obj",
                           "mtllib walls.mtl mats/stone.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\n"
                           "vt 0 0\nusemtl Wall\nf 1/1 2/1 3/1\nusemtl Floor\nf 1/1 2/1 3/1\n"
                           "usemtl Stone\nf 1/1 2/1 3/1\nusemtl Far\nf 1/1 2/1 3/1\n"),
                     SourceLoc{});
-  EXPECT_EQ(testing::internal::GetCapturedStderr(), "") << "every texture found";
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "") << "every texture found";
   ASSERT_EQ(m.materials.size(), 4u);
   for (const ModelMaterial& mat : m.materials) {
     EXPECT_EQ(mat.reflectance, mat.name == "Wall" ? Vec3(0.5f) : Vec3(0.0f)) << mat.name;
@@ -182,12 +182,12 @@ TEST_F(ModelLeniency, ObjTexturePathsWithBackslashesAndOtherCaseAreFoundBesideTh
 TEST_F(ModelLeniency, AMissingTextureIsWarnedOnceForAllTheMaterialsNamingIt) {
   write("walls.mtl",
         "newmtl A\nKd 0.5 0.5 0.5\nmap_Kd gone.png\nnewmtl B\nKd 0.5 0.5 0.5\nmap_Kd gone.png\n");
-  testing::internal::CaptureStderr();
+  ::testing::internal::CaptureStderr();
   const Model m = read_obj_file(write("walls.obj",
                                       "mtllib walls.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\n"
                                       "usemtl A\nf 1 2 3\nusemtl B\nf 1 2 3\n"),
                                 SourceLoc{});
-  const std::string warned = testing::internal::GetCapturedStderr();
+  const std::string warned = ::testing::internal::GetCapturedStderr();
   EXPECT_EQ(count(warned, "warning"), 1u) << warned;
   EXPECT_NE(warned.find("gone.png (no such file); material 'A', 'B'"), std::string::npos) << warned;
   EXPECT_EQ(m.textures.unread, 2u);
@@ -197,15 +197,59 @@ TEST_F(ModelLeniency, ObjPointsAndLinesAreWarnedOncePerKindAtTheFirst) {
   std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
   for (int i = 0; i < 50; ++i) obj += "l 1 2\n";  // lines 5..54
   for (int i = 0; i < 30; ++i) obj += "p 3\n";
-  testing::internal::CaptureStderr();
+  ::testing::internal::CaptureStderr();
   const Model m = parse_obj_text(obj, "", "mixed.obj");
-  const std::string warned = testing::internal::GetCapturedStderr();
+  const std::string warned = ::testing::internal::GetCapturedStderr();
   EXPECT_EQ(m.triangle_count(), 1u);
   EXPECT_EQ(count(warned, "warning"), 2u) << warned;
   EXPECT_NE(warned.find("mixed.obj:5:1: warning: 50 lines (l) skipped"), std::string::npos)
       << warned;
   EXPECT_NE(warned.find("mixed.obj:55:1: warning: 30 points (p) skipped"), std::string::npos)
       << warned;
+}
+
+TEST_F(ModelLeniency, ObjSaysOnceEachWhatItsMaterialsLose) {
+  write("glass.mtl",
+        "newmtl Glass\nKd 0.9 0.9 0.9\nd 0.3\nnewmtl Tinted\nKd 0.5 0.5 0.9\nTr 0.5\n"
+        "newmtl Brick\nKd 0.6 0.3 0.2\nmap_Bump brick_n.png\nnewmtl Stone\nKd 0.5 0.5 0.5\n"
+        "norm stone_n.png\nnewmtl Chrome\nKd 0.2 0.2 0.2\nKs 0.9 0.9 0.9\nNs 200\n"
+        "newmtl Matte\nKd 0.7 0.7 0.7\nKs 0 0 0\nNs 10\nd 1\n");
+  std::string obj = "mtllib glass.mtl\nv 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 1 1 0 0 0 1\n";
+  for (const char* mat : {"Glass", "Tinted", "Brick", "Stone", "Chrome", "Matte"})
+    obj += std::string("usemtl ") + mat + "\nf 1 2 3\nf 1 2 3\n";
+  ::testing::internal::CaptureStderr();
+  const Model m = read_obj_file(write("glass.obj", obj), SourceLoc{});
+  const std::string warned = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(m.triangle_count(), 12u);
+  for (const char* said :
+       {"warning: material 'Glass' (and 1 more) is partly transparent (d or Tr), which rad "
+        "ignores: the surface is opaque",
+        "warning: material 'Brick' (and 1 more) has a bump or normal map (map_Bump, bump or norm)",
+        "warning: material 'Chrome' has a specular reflection (Ks, Ns, map_Ks), which rad "
+        "ignores",
+        "warning: the vertices' colours (v x y z r g b) are ignored"}) {
+    EXPECT_NE(warned.find(said), std::string::npos) << said << "\n" << warned;
+  }
+  EXPECT_EQ(count(warned, "warning"), 4u) << "one per kind, Matte's defaults none: " << warned;
+}
+
+TEST_F(ModelLeniency, PlyVertexColoursAreSaidToBeIgnored) {
+  const std::string header =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+      "property float y\nproperty float z\n";
+  const std::string rest = "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  ::testing::internal::CaptureStderr();
+  parse_ply(header + "property uchar red\nproperty uchar green\nproperty uchar blue\n" + rest +
+                "0 0 0 255 0 0\n1 0 0 0 255 0\n0 1 0 0 0 255\n3 0 1 2\n",
+            "c.ply");
+  std::string warned = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(warned.find("c.ply: warning: the vertices' colours (red, ...) are ignored"),
+            std::string::npos)
+      << warned;
+  EXPECT_EQ(count(warned, "warning"), 1u) << warned;
+  ::testing::internal::CaptureStderr();
+  parse_ply(header + rest + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "plain.ply");
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
 }
 
 TEST_F(ModelLeniency, ObjInUtf16OrWithAByteOrderMarkIsRead) {

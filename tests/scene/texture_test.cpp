@@ -227,6 +227,46 @@ TEST(TextureCoordinates, AMissingOrUndecodableExternalGltfImageIsWarnedByItsFile
       << warned;
 }
 
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return at == std::string::npos ? text : text.replace(at, from.size(), to);
+}
+
+TEST(TextureCoordinates, GltfSaysOnceEachWhatItDoesNotRender) {
+  // The textured mesh placed twice without its coordinates, with vertex colours; a skin, an
+  // animation and two extensions rad does not read; BLEND.
+  std::string gltf = textured_quad_gltf(four_by_two(), false, "BLEND");
+  gltf = replaced(gltf, R"("POSITION": 0, "TEXCOORD_0": 1})", R"("POSITION": 0, "COLOR_0": 0})");
+  gltf = replaced(gltf, R"("nodes": [{"mesh": 0}])", R"("nodes": [{"mesh": 0}, {"mesh": 0}])");
+  gltf = replaced(gltf, R"("scenes": [{"nodes": [0]}])", R"("scenes": [{"nodes": [0, 1]}])");
+  gltf = replaced(gltf, R"({"asset": {"version": "2.0"},)",
+                  R"({"asset": {"version": "2.0"}, "skins": [{"joints": [1]}],
+                      "animations": [{"channels": [], "samplers": []}],
+                      "extensionsUsed": ["KHR_materials_clearcoat", "KHR_texture_transform",
+                                         "KHR_materials_transmission"],)");
+  ::testing::internal::CaptureStderr();
+  const Model m = parse_gltf(gltf, "leaf.gltf", "");
+  const std::string warned = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(m.triangle_count(), 4u);
+  for (const char* said :
+       {"leaf.gltf: warning: 4 triangles of textured material 'Wood' (the first) have no texture "
+        "coordinates (TEXCOORD_0): they reflect the texture's mean colour and are not cut out",
+        "leaf.gltf: warning: the vertices' colours (COLOR_0) are ignored",
+        "leaf.gltf: warning: 1 skins ignored", "leaf.gltf: warning: 1 animations ignored",
+        "leaf.gltf: warning: the extensions KHR_materials_clearcoat, KHR_materials_transmission "
+        "are used but rad ignores them",
+        "leaf.gltf: warning: material 'Wood' has alphaMode BLEND, which rad cannot blend: it is "
+        "read as MASK with alphaCutoff 0.5"}) {
+    EXPECT_NE(warned.find(said), std::string::npos) << said << "\n" << warned;
+  }
+  EXPECT_EQ(count(warned, "warning"), 6u) << "one each: " << warned;
+  // A file that has none of these says nothing.
+  ::testing::internal::CaptureStderr();
+  parse_gltf(textured_quad_gltf(four_by_two(), false, "MASK"), "leaf.gltf", "");
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+}
+
 TEST(TextureCoordinates, ObjTurnsVtUpsideDownToTheImagesRows) {
   const fs::path dir = fs::temp_directory_path() / ("rad_texture_" + std::to_string(getpid()));
   fs::create_directories(dir);
