@@ -76,8 +76,22 @@ const std::string kStageHelp = fmt::format(
     kStageFloorReflectance, kStageIlluminance);
 const std::string kSunHelp = fmt::format(
     "For a model: --stage outdoors: a sun of {:g} lux at ELEVATION,AZIMUTH degrees (azimuth from "
-    "the front, +z, toward +x; default {:g},{:g}), the area light then a sky of {:g} lux",
+    "the front, +z, toward +x; default {:g},{:g}), the area light then a sky of {:g} lux; give it "
+    "after the scene and output when it takes no angles",
     kStageSunIlluminance, SunAngles{}.elevation_deg, SunAngles{}.azimuth_deg, kStageSkyIlluminance);
+
+// Options added while it lives are listed under `name` in the help and in the man page; the
+// others under "Options".
+class OptionGroup {
+ public:
+  OptionGroup(CLI::App& app, const char* name) : app_(app) { app_.option_defaults()->group(name); }
+  ~OptionGroup() { app_.option_defaults()->group("Options"); }
+  OptionGroup(const OptionGroup&) = delete;
+  OptionGroup& operator=(const OptionGroup&) = delete;
+
+ private:
+  CLI::App& app_;
+};
 
 // --emit, --light-group, --stage, --sun and --hierarchy: how a scene file is read, for every mode.
 struct SceneReading {
@@ -89,6 +103,7 @@ struct SceneReading {
   CLI::Option* sun_option = nullptr;
 
   void add_to(CLI::App& app, const char* emit_help, const char* hierarchy_help) {
+    const OptionGroup group(app, "Scene");
     app.add_option("--emit", emit, emit_help)
         ->expected(1)
         ->allow_extra_args(false)
@@ -97,7 +112,7 @@ struct SceneReading {
                    "For a model: its materials and lights whose name matches the pattern are in "
                    "light group NAME, e.g. --light-group 'Lamp*=kitchen' (repeatable; a "
                    "description says 'Group \"NAME\"'). Each group's light is solved and written "
-                   "on its own, to be mixed after the solve")
+                   "on its own, to be mixed after the solve; the last match wins")
         ->expected(1)
         ->allow_extra_args(false)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
@@ -147,6 +162,7 @@ struct Solving {
   size_t kept_rays_mib = SolverOptions{}.kept_rays_bytes >> 20;
 
   void add_to(CLI::App& app, RunOptions& r, bool time_limit) {
+    const OptionGroup group(app, "Solving");
     app.add_option("--backend", backend, "Shadow-ray backend: embree, grid or brute")
         ->capture_default_str();
     app.add_flag("!--no-packets", r.packets, "Trace shadow rays one at a time (Embree)");
@@ -201,9 +217,11 @@ struct Solving {
     app.add_option("--max-shots", o.max_shots,
                    "Stop after this many shots (0 writes the unlit scene: emission only)");
     if (time_limit) app.add_option("--time-limit", o.time_limit, "Stop after this many seconds");
-    app.add_option("--kept-rays", kept_rays_mib,
-                   "MiB for shadow-ray answers kept between shots of the same cluster, which "
-                   "casts the same rays again; 0 traces every ray every time, with the same result")
+    app.add_option(
+           "--kept-rays", kept_rays_mib,
+           "MiB for shadow-ray answers kept between shots of the same cluster, which "
+           "casts the same rays again, at most 1/8 of --max-memory; 0 traces every ray every "
+           "time, with the same result")
         ->capture_default_str();
     app.add_flag("!--no-culling", o.occlusion_culling,
                  "No occlusion culling (on by default: receivers that a flat occluder, a wall, "
@@ -253,6 +271,7 @@ struct Showing {
       fmt::format("{}x{}", OutputOptions{}.image_width, OutputOptions{}.image_height);
 
   void add_to(CLI::App& app, OutputOptions& o, bool images, bool final_render) {
+    const OptionGroup group(app, "Images and display");
     app.add_flag("--ascii", o.ascii, "Write text PLY instead of binary");
     app.add_flag("!--no-ambient", o.ambient,
                  "Display colours without Cohen's ambient term (the stored radiosity never has "
@@ -273,15 +292,18 @@ struct Showing {
     }
     app.add_option(
         "--camera", camera,
-        fmt::format("Image camera eye_x,eye_y,eye_z,target_x,target_y,target_z[,fov_deg], "
-                    "up +y (default: frames the scene from its open side; fov {})",
+        fmt::format("Image camera: eye, target and vertical field of view in degrees, y up "
+                    "(default: the scene framed from outside its most open side, or from just "
+                    "inside it when every side is closed; fov {}); the camera used is printed in "
+                    "this syntax",
                     kDefaultFovDeg));
     app.add_option("--size", size, "Image size WxH in pixels")->capture_default_str();
     if (final_render) {
       app.add_option("--render", render,
                      "How images are made: final (each pixel gathers its direct light afresh "
                      "and reads the bounced light from the solution: sharp shadows and "
-                     "textures) or preview (the solved mesh's colours, interpolated: fast)")
+                     "textures) or preview (the solved mesh's colours, interpolated: fast); false "
+                     "colour images are always of the mesh")
           ->capture_default_str();
       app.add_option("--pixel-samples", o.pixel_samples,
                      "Final render: samples per pixel along each side (3: 9 per pixel)")
@@ -379,8 +401,10 @@ struct Showing {
 };
 
 void add_max_memory(CLI::App& app, std::string& text) {
+  const OptionGroup group(app, "Solving");
   app.add_option("--max-memory", text,
-                 "Memory the solve may use (512M, 8G, ...; default 90% of the machine's): a scene "
+                 "Memory the solve may use (512M, 8G, ...; default 90% of the machine's, or of the "
+                 "control group's): a scene "
                  "that could need more is refused; a solve that reaches it stops and writes");
 }
 
@@ -456,7 +480,8 @@ std::string exit_status_help(const std::string& mode) {
 
 const char* const kEmitHelp =
     "For a model scene (.obj, .ply, .gltf, .glb): materials matching the pattern emit VALUE "
-    "times their colour, e.g. --emit 'Lamp*=12' (repeatable)";
+    "times their colour, e.g. --emit 'Lamp*=12' (repeatable; refused for a description, whose "
+    "emission is written in it)";
 const char* const kHierarchyHelp =
     "How objects are grouped for shadow rays: file (as written), auto (Pures regrouped into "
     "compact Composites and Assemblies of what is near) or flat (one Composite); default auto "
@@ -481,7 +506,8 @@ struct SolvingMode {
     unit_option = app.add_option("--unit", unit,
                                  "Metres per scene unit of a description, OBJ or PLY scene (0.001: "
                                  "millimetres), for lights in candela and lux per square metre "
-                                 "(glTF is in metres: ignored there); default 1");
+                                 "(glTF is in metres: ignored there); default 1")
+                      ->group("Scene");
     memory_limit = memory;
     if (memory_limit) add_max_memory(app, max_memory);
     app.add_flag("-q,--quiet", c.run.quiet, "Print errors only (no stages, progress or warnings)");
@@ -755,6 +781,7 @@ void define_solve(ModeParser& p) {
   SolvingMode& solving = p.keep<SolvingMode>();
   solving.add_to(app, c, /*time_limit=*/true, /*images=*/true, /*memory=*/true);
   app.add_option("--stats-json", c.job.stats_json, "Write run statistics as JSON to this file");
+  const OptionGroup group(app, "Checkpoints");
   app.add_option("--checkpoint", c.job.checkpoint,
                  "Save the solver state to this file (every --checkpoint-every seconds, when "
                  "stopped by Ctrl-C or SIGTERM, and at the end); resume from it when it exists");
@@ -903,7 +930,132 @@ std::optional<CommandLine> parse_mode(const ModeDefinition& mode, std::vector<st
   return std::nullopt;
 }
 
+// The man page's part: its option entries made from the same definitions as --help.
+
+// `text` with what man(7) reads otherwise escaped: a backslash, and a hyphen (an option's "--"
+// is two minus signs, \-\-, which copy and search as typed).
+std::string roff_escape(const std::string& text) {
+  std::string out;
+  for (const char ch : text) {
+    out += ch == '\\' ? "\\e" : ch == '-' ? "\\-" : std::string(1, ch);
+  }
+  return out;
+}
+
+// Escaped text as lines of the page's width; a line that would start with '.' or '\'' (a
+// request) starts with the zero-width \& instead.
+std::string roff_lines(const std::string& escaped) {
+  std::string out;
+  const std::string wrapped = wrap(escaped, 0, 96);
+  for (size_t at = 0; at < wrapped.size();) {
+    const size_t end = std::min(wrapped.find('\n', at), wrapped.size());
+    const std::string line = wrapped.substr(at, end - at);
+    if (!line.empty()) out += (line[0] == '.' || line[0] == '\'' ? "\\&" : "") + line + "\n";
+    at = end + 1;
+  }
+  return out;
+}
+
+// One option as a tagged paragraph: its names in bold, its value in italics, then what --help
+// says of it.
+std::string man_entry(const CLI::Option& o) {
+  std::vector<std::string> names;
+  for (const std::string& s : o.get_snames()) names.push_back(roff_escape("-" + s));
+  for (const std::string& l : o.get_lnames()) names.push_back(roff_escape("--" + l));
+  std::string all;
+  for (const std::string& n : names) all += (all.empty() ? "" : " \", \" ") + n;
+  const std::string label = roff_escape(value_label(o));
+  std::string head;
+  if (label.empty()) {
+    head = names.size() == 1 ? ".B " + all : ".BR " + all;
+  } else if (names.size() == 1) {
+    head = ".BI " + all + " \" " + label + "\"";
+  } else {
+    head = ".BR " + all + " \" \\fI" + label + "\\fR\"";
+  }
+  std::string text = option_description(o);
+  if (!text.empty() && text.back() != '.') text += '.';  // a sentence, as the page's prose
+  return ".TP\n" + head + "\n" + roff_lines(roff_escape(text));
+}
+
+// "\fB--a\fR, \fB--b\fR and \fB--c\fR".
+std::string roff_option_list(const std::vector<std::string>& names) {
+  std::string out;
+  for (size_t i = 0; i < names.size(); ++i) {
+    out += (i == 0                  ? ""
+            : i + 1 == names.size() ? " and "
+                                    : ", ") +
+           std::string("\\fB") + roff_escape(names[i]) + "\\fR";
+  }
+  return out;
+}
+
+// The option entries of rad(1): rad's options group by group as --help lists them, then for
+// each other mode which of those it takes and its own (or its own description of one).
+std::string man_options() {
+  const auto rad = make_parser(kModes[0]);
+  const auto generic = [](const std::string& names) {
+    return names == "-h,--help" || names == "--version";
+  };
+  std::string out;
+  std::vector<const CLI::Option*> rad_options;
+  for (const std::string& group : rad->app.get_groups()) {
+    bool any = false;
+    for (const CLI::Option* o : rad->app.get_options()) {
+      if (!o->nonpositional() || o->get_group() != group) continue;
+      if (!any) out += ".SS " + (group == "Options" ? std::string("General") : group) + "\n";
+      any = true;
+      out += man_entry(*o);
+      rad_options.push_back(o);
+    }
+  }
+  for (size_t m = 1; m < std::size(kModes); ++m) {
+    const auto p = make_parser(kModes[m]);
+    std::vector<std::string> shared, left_out;
+    std::string own;
+    std::vector<std::string> here;
+    for (const CLI::Option* o : p->app.get_options()) {
+      if (!o->nonpositional()) continue;
+      const std::string names = option_names(*o);
+      here.push_back(names);
+      const auto same = std::find_if(rad_options.begin(), rad_options.end(), [&](auto* r) {
+        return option_names(*r) == names && value_label(*r) == value_label(*o) &&
+               option_description(*r) == option_description(*o);
+      });
+      if (same == rad_options.end()) {
+        own += man_entry(*o);
+      } else if (!generic(names)) {
+        shared.push_back(names);
+      }
+    }
+    for (const CLI::Option* r : rad_options) {
+      const std::string names = option_names(*r);
+      if (!generic(names) && std::find(here.begin(), here.end(), names) == here.end()) {
+        left_out.push_back(names);
+      }
+    }
+    std::string takes = left_out.empty() ? "The options above"
+                        : left_out.size() <= shared.size()
+                            ? "The options above except " + roff_option_list(left_out)
+                            : "Of the options above, " + roff_option_list(shared);
+    takes += own.empty() ? "." : ", and:";
+    out += ".SS \"" + roff_escape(kModes[m].title) + "\"\n" + roff_lines(takes) + own;
+  }
+  return out;
+}
+
 }  // namespace
+
+std::string man_page_with_options(const std::string& page) {
+  const std::string begin = ".\\\" BEGIN OPTIONS", end = ".\\\" END OPTIONS";
+  const size_t b = page.find(begin), e = page.find(end);
+  const size_t first = b == std::string::npos ? b : page.find('\n', b);
+  if (first == std::string::npos || e == std::string::npos || e < first) {
+    throw Error("the page has no lines '" + begin + "' and '" + end +
+                "' around its option entries: add them where the entries go");
+  }
+  return page.substr(0, first + 1) + man_options() + page.substr(e);
+}
 
 size_t edit_distance(std::string_view a, std::string_view b) {
   // Optimal string alignment (Damerau-Levenshtein without repeated edits of one substring):

@@ -61,6 +61,13 @@ size_t edit_distance(std::string_view a, std::string_view b);
 std::optional<std::string> nearest_option(const std::string& typed,
                                           const std::vector<std::string>& names);
 
+/// `page`, rad's man page, with the option entries between its lines `.\" BEGIN OPTIONS` and
+/// `.\" END OPTIONS` made from the definitions --help prints: rad's options group by group, each
+/// with its names, its value and its description, then what each other mode takes. So the page
+/// and the help say the same (tools/man_options.cpp writes it; ManPage.OptionsAreTheHelps checks
+/// it). Throws rad::Error when the page has no such lines.
+std::string man_page_with_options(const std::string& page);
+
 /// Parses argv. Accepts the original's single-dash flags (-noshadows, -minsize F). Returns
 /// nothing when the program should exit with `exit_code`: kExitDone after --help or --version,
 /// kExitUsage after a usage error, which it prints naming the argument and how to mend it.

@@ -1,5 +1,7 @@
 // rad's help and usage messages as a user reads them: values named, defaults in words, none of
 // the parsing library's notation, and a bad value answered with what was expected.
+#include "app/cli.h"
+
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -89,6 +91,23 @@ TEST(Help, AModelIsReadAsAModelFile) {
   EXPECT_NE(r.out.find("Reading model file..."), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("Reading description file"), std::string::npos) << r.out;
   fs::remove_all(dir);
+}
+
+// rad(1)'s option entries are what --help says of each option (the same definitions, written by
+// build/tools/rad-man-options); the man page test checks the rest of the page against --help.
+TEST(ManPage, OptionsAreTheHelps) {
+  const fs::path page = fs::path(RAD_SOURCE_DIR) / "docs" / "rad.1";
+  std::ifstream in(page, std::ios::binary);
+  const std::string written{std::istreambuf_iterator<char>(in), {}};
+  ASSERT_FALSE(written.empty()) << page;
+  EXPECT_TRUE(written == rad::man_page_with_options(written))
+      << "docs/rad.1's option entries differ from rad's --help: run "
+         "build/tools/rad-man-options docs/rad.1";
+  const std::string entries = written.substr(written.find("BEGIN OPTIONS"));
+  for (const char* entry : {".BI \\-\\-roulette \" FRACTION\"\n", ".SS Solving\n",
+                            ".SS \"rad batch\"\n", ".BR \\-q \", \" \\-\\-quiet\n"}) {
+    EXPECT_NE(entries.find(entry), std::string::npos) << entry;
+  }
 }
 
 }  // namespace

@@ -21,8 +21,10 @@ done
 sort -u "$d/options" -o "$d/options"
 [ "$(wc -l <"$d/options")" -ge 3 ] || { echo "too few options read from --help"; exit 1; }
 
-# The options the page names (in roff a hyphen in an option is written \-).
-grep -oE '\\-\\-[a-z][a-z0-9\\-]*[a-z0-9]' "$page" | sed 's/\\-/-/g' | sort -u >"$d/named"
+# The options the page names (in roff a hyphen in an option is written \-; font changes such as
+# \fB and \fR dropped first, so that they do not run on from a name).
+sed 's/\\f[BIRP]//g' "$page" | grep -oE '\\-\\-[a-z][a-z0-9\\-]*[a-z0-9]' | sed 's/\\-/-/g' |
+  sort -u >"$d/named"
 while read -r option; do
   grep -qxF -- "$option" "$d/named" || { echo "not in the man page: $option"; status=1; }
 done <"$d/options"
