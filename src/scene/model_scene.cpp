@@ -33,6 +33,16 @@ GroupRule parse_group_rule(const std::string& text) {
   return {text.substr(0, eq), text.substr(eq + 1)};
 }
 
+namespace {
+
+// The command line's rules (--emit, --light-group, --two-sided) name materials, groups and
+// lights by one kind of pattern: the shell's.
+bool name_matches(const std::string& pattern, const std::string& name) {
+  return fnmatch(pattern.c_str(), name.c_str(), 0) == 0;
+}
+
+}  // namespace
+
 SceneDescription model_to_scene(Model m, const ModelOptions& o) {
   std::vector<Material> materials;
   std::vector<size_t> rule_uses(o.emit.size(), 0);
@@ -45,7 +55,7 @@ SceneDescription model_to_scene(Model m, const ModelOptions& o) {
       mat.reflectance = glm::min(mat.reflectance, Vec3(1.0f));
     }
     for (size_t r = 0; r < o.emit.size(); ++r) {
-      if (fnmatch(o.emit[r].pattern.c_str(), mm.name.c_str(), 0) != 0) continue;
+      if (!name_matches(o.emit[r].pattern, mm.name)) continue;
       const float peak = max_component(mm.reflectance);
       const Vec3 c = peak > 0.0f ? mm.reflectance / peak : Vec3(1.0f);
       mat.emission = o.emit[r].value * c;
@@ -69,7 +79,7 @@ SceneDescription model_to_scene(Model m, const ModelOptions& o) {
   auto group_of = [&](const std::string& name) -> std::optional<std::string> {
     std::optional<std::string> g;
     for (size_t r = 0; r < o.light_groups.size(); ++r) {
-      if (fnmatch(o.light_groups[r].pattern.c_str(), name.c_str(), 0) != 0) continue;
+      if (!name_matches(o.light_groups[r].pattern, name)) continue;
       g = o.light_groups[r].group;
       ++group_uses[r];
     }
@@ -84,6 +94,30 @@ SceneDescription model_to_scene(Model m, const ModelOptions& o) {
     if (group_uses[r] == 0) {
       throw Error(SourceLoc{m.path}, "--light-group '" + o.light_groups[r].pattern +
                                          "' matches no material (" + names() + ") and no light");
+    }
+  }
+  // Two-sided by name: a material wherever it is used, a group (OBJ o/g, glTF node) whole.
+  std::vector<size_t> two_sided_uses(o.two_sided.size(), 0);
+  auto two_sided = [&](const std::string& name) {
+    bool any = false;
+    for (size_t r = 0; r < o.two_sided.size(); ++r) {
+      if (!name_matches(o.two_sided[r], name)) continue;
+      any = true;
+      ++two_sided_uses[r];
+    }
+    return any;
+  };
+  std::vector<bool> material_two_sided;
+  for (const ModelMaterial& mm : m.materials)
+    material_two_sided.push_back(mm.two_sided || two_sided(mm.name));
+  std::vector<bool> group_two_sided;
+  for (const ModelGroup& g : m.groups) group_two_sided.push_back(two_sided(g.name));
+  for (size_t r = 0; r < o.two_sided.size(); ++r) {
+    if (two_sided_uses[r] == 0) {
+      throw Error(SourceLoc{m.path}, "--two-sided '" + o.two_sided[r] + "' matches no material (" +
+                                         names() +
+                                         ") and no group; give one of their names or a pattern "
+                                         "such as 'Leaf*'");
     }
   }
   for (size_t r = 0; r < o.emit.size(); ++r) {
@@ -108,7 +142,8 @@ SceneDescription model_to_scene(Model m, const ModelOptions& o) {
   // their product.
   std::vector<int32_t> pure_of(m.materials.size(), -1);
   std::vector<uint32_t> used;
-  for (ModelGroup& g : m.groups) {
+  for (size_t gi = 0; gi < m.groups.size(); ++gi) {
+    ModelGroup& g = m.groups[gi];
     for (const uint32_t k : used) pure_of[k] = -1;
     used.clear();
     const int32_t composite = int32_t(d.objects.size());
@@ -131,7 +166,7 @@ SceneDescription model_to_scene(Model m, const ModelOptions& o) {
         p.base_texture = m.materials[k].base_texture;
         p.emissive_texture = m.materials[k].emissive_texture;
         p.cutout = m.materials[k].cutout;
-        if (m.materials[k].two_sided) p.flags.two_sided = true;
+        if (material_two_sided[k] || group_two_sided[gi]) p.flags.two_sided = true;
         p.flags.group = material_group[k];
         emits |= max_component(p.material.emission) > 0.0f;
         d.objects[size_t(composite)].children.push_back(pure_of[k]);

@@ -35,6 +35,10 @@ GroupRule parse_group_rule(const std::string& text);
 struct ModelOptions {
   std::vector<EmitRule> emit;
   std::vector<GroupRule> light_groups;
+  /// --two-sided PATTERN: the materials, and the groups (OBJ o/g, glTF nodes), whose name
+  /// matches the shell pattern are two-sided (as glTF's doubleSided); a pattern matching
+  /// nothing is an error.
+  std::vector<std::string> two_sided;
   /// A solve needs light; rad convert does not, and takes a model with no emitter as it is.
   bool require_emission = true;
   /// With !require_emission: say in a warning that nothing emits and how to light it (rad

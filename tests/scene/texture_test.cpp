@@ -341,5 +341,32 @@ TEST(TwoSidedModels, AGltfDoubleSidedMaterialFacesBothWaysWithItsTexture) {
   }
 }
 
+TEST(TwoSidedModels, TwoSidedNamesObjMaterialsOrGroupsByPattern) {
+  const std::string obj =
+      "mtllib garden.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\no hedge\nusemtl Leaf\nf 1 2 "
+      "3\nusemtl Wall\n"
+      "f 1 3 4\no house\nusemtl Wall\nf 1 2 3\nusemtl Leaf\nf 1 3 4\n";
+  const std::string mtl = "newmtl Leaf\nKd 0.2 0.6 0.2\nnewmtl Wall\nKd 0.7 0.7 0.7\n";
+  auto triangles = [&](const std::vector<std::string>& patterns) {
+    ModelOptions o;
+    o.require_emission = false;
+    o.two_sided = patterns;
+    return build_hierarchy(model_to_scene(parse_obj_text(obj, mtl, "garden.obj"), o))
+        .triangles.size();
+  };
+  EXPECT_EQ(triangles({}), 4u);
+  EXPECT_EQ(triangles({"Le*"}), 6u) << "Leaf in both groups";
+  EXPECT_EQ(triangles({"hedge"}), 6u) << "the hedge, both its materials";
+  EXPECT_EQ(triangles({"hedge", "Leaf"}), 7u) << "each face once, whichever rules match it";
+  try {
+    triangles({"Roof*"});
+    ADD_FAILURE() << "a pattern matching nothing";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--two-sided 'Roof*' matches no material (Leaf, Wall)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace rad
