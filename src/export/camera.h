@@ -36,12 +36,14 @@ Camera parse_camera(std::string_view spec);
 CameraFrame camera_frame(const Camera& c, float aspect);
 
 /// Frames the bounding box of `positions` (faces: 3 indices each) from its most open side: of the
-/// four sides facing ±x and ±z, the one whose face is least covered by triangles lying on it
-/// that face into the box (a closed object's outer faces leave its sides open: it is seen from
-/// outside; ties prefer -z, then +z, -x, +x). When that side is open the eye is outside the box
-/// looking at its centre, far enough for the side's face to fill the view (the Cornell box gives
-/// its published view); when even that side is closed (a room), the eye is just inside it and the
-/// field of view widens to show the opposite wall. Up is +y.
+/// four sides facing ±x and ±z, the one whose face is least covered by triangles that face into
+/// the box and lie on it or near it (within 8% of the box's depth across that side: a leaning or
+/// thick wall closes its side too); a closed object's outer faces leave its sides open: it is
+/// seen from outside; ties prefer -z, then +z, -x, +x. When that side is open the eye is outside
+/// the box looking at its centre, far enough for the side's face to fill the view (the Cornell
+/// box gives its published view); when even that side is closed (a room), the eye is just inside,
+/// in front of the triangles closing it, and the field of view widens to show the opposite wall.
+/// Up is +y.
 Camera default_camera(std::span<const Vec3> positions, std::span<const uint32_t> indices,
                       float aspect);
 

@@ -129,6 +129,55 @@ TEST(Camera, DefaultForAClosedObjectStandsOutsideIt) {
   EXPECT_EQ(c.fov_y_deg, kDefaultFovDeg);
 }
 
+// A closed room whose walls are not all on its bounding box: the Cornell box closed at the front,
+// its red wall leaning as measured (x = 552.8 at the floor, 556 at the ceiling), and the same
+// room with walls 20 mm thick (their outer faces, facing out, make the box). The camera stands
+// inside, in front of every wall, and looks into the room.
+TEST(Camera, DefaultForAClosedRoomWithALeaningOrThickWallStandsInsideIt) {
+  const float w = 556.0f, h = 548.8f, d = 559.2f;
+  const auto red_x = [&](float y) { return 552.8f + (w - 552.8f) * y / h; };
+  for (const float thickness : {0.0f, 20.0f}) {
+    Soup s;
+    auto quad = [&](Vec3 a, Vec3 b, Vec3 c, Vec3 e) {  // front by the right-hand rule
+      const uint32_t n = uint32_t(s.positions.size());
+      s.positions.insert(s.positions.end(), {a, b, c, e});
+      s.indices.insert(s.indices.end(), {n, n + 1, n + 2, n, n + 2, n + 3});
+    };
+    // Inside faces, each facing the room's centre.
+    quad({0, 0, 0}, {0, 0, d}, {red_x(0), 0, d}, {red_x(0), 0, 0});  // floor, +y
+    quad({0, h, 0}, {w, h, 0}, {w, h, d}, {0, h, d});                // ceiling, -y
+    quad({0, 0, 0}, {0, h, 0}, {0, h, d}, {0, 0, d});                // green wall, +x
+    quad({red_x(0), 0, 0}, {red_x(0), 0, d}, {w, h, d}, {w, h, 0});  // red wall, -x
+    quad({0, 0, d}, {0, h, d}, {w, h, d}, {red_x(0), 0, d});         // back wall, -z
+    quad({0, 0, 0}, {red_x(0), 0, 0}, {w, h, 0}, {0, h, 0});         // front wall, +z
+    const Vec3 centre(w / 2, h / 2, d / 2);
+    for (size_t f = 0; f < s.indices.size(); f += 3) {
+      const Vec3 a = s.positions[s.indices[f]], b = s.positions[s.indices[f + 1]],
+                 c = s.positions[s.indices[f + 2]];
+      ASSERT_GT(glm::dot(glm::cross(b - a, c - a), centre - a), 0.0f) << f;
+    }
+    if (thickness > 0.0f) {  // the walls' outer faces, facing out
+      const float t = thickness;
+      quad({-t, -t, -t}, {w + t, -t, -t}, {w + t, -t, d + t}, {-t, -t, d + t});
+      quad({-t, h + t, -t}, {-t, h + t, d + t}, {w + t, h + t, d + t}, {w + t, h + t, -t});
+      quad({-t, -t, -t}, {-t, -t, d + t}, {-t, h + t, d + t}, {-t, h + t, -t});
+      quad({w + t, -t, -t}, {w + t, h + t, -t}, {w + t, h + t, d + t}, {w + t, -t, d + t});
+      quad({-t, -t, -t}, {-t, h + t, -t}, {w + t, h + t, -t}, {w + t, -t, -t});
+      quad({-t, -t, d + t}, {w + t, -t, d + t}, {w + t, h + t, d + t}, {-t, h + t, d + t});
+    }
+    const Camera c = default_camera(s.positions, s.indices, 1.0f);
+    EXPECT_GT(c.eye.x, 0.0f) << thickness;
+    EXPECT_LT(c.eye.x, red_x(c.eye.y)) << thickness << ": behind the red wall";
+    EXPECT_GT(c.eye.y, 0.0f) << thickness;
+    EXPECT_LT(c.eye.y, h) << thickness;
+    EXPECT_GT(c.eye.z, 0.0f) << thickness;
+    EXPECT_LT(c.eye.z, d) << thickness;
+    // It looks across the room, at the wall opposite the one it stands at.
+    EXPECT_GT(glm::length(c.target - c.eye), 0.9f * std::min(w, d)) << thickness;
+    EXPECT_GT(c.fov_y_deg, kDefaultFovDeg) << thickness;
+  }
+}
+
 TEST(Camera, SpecIsWhatParseCameraReads) {
   const Camera c = parse_camera("1,2,3,4,5.5,-6,45");
   const Camera d = parse_camera(camera_spec(c));
