@@ -97,6 +97,7 @@ class OptionGroup {
 struct SceneReading {
   std::vector<std::string> emit;
   std::vector<std::string> light_groups;
+  std::vector<std::string> two_sided;
   std::string hierarchy;
   bool stage = false;
   std::string sun;
@@ -113,6 +114,14 @@ struct SceneReading {
                    "light group NAME, e.g. --light-group 'Lamp*=kitchen' (repeatable; a "
                    "description says 'Group \"NAME\"'). Each group's light is solved and written "
                    "on its own, to be mixed after the solve; the last match wins")
+        ->expected(1)
+        ->allow_extra_args(false)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    app.add_option("--two-sided", two_sided,
+                   "For a model: its materials, and its groups (OBJ o and g, glTF nodes), whose "
+                   "name matches the pattern are two-sided, lit and shooting on both faces, "
+                   "e.g. --two-sided 'Leaf*' (repeatable; glTF says doubleSided, a description "
+                   "'TwoSided Yes')")
         ->expected(1)
         ->allow_extra_args(false)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
@@ -134,6 +143,7 @@ struct SceneReading {
     } catch (const Error& e) {
       throw CLI::ValidationError("--light-group", e.message());
     }
+    in.model.two_sided = two_sided;
     if (stage || sun_option->count() > 0) {
       StageOptions o;
       try {
@@ -556,6 +566,7 @@ const std::map<std::string, std::string> kValueLabels = {
     {"--false-colour-log", "DECADES"},
     {"--emit", "PATTERN=VALUE"},
     {"--light-group", "PATTERN=NAME"},
+    {"--two-sided", "PATTERN"},
     {"--sun", "[ELEVATION,AZIMUTH]"},
     {"--hierarchy", "file|auto|flat"},
     {"--unit", "METRES"},

@@ -20,6 +20,11 @@ void check_scene_input(const SceneInput& in) {
                 ".glb); in a description, give the object or light a Group flag instead "
                 "(Group \"kitchen\")");
   }
+  if (!in.model.two_sided.empty()) {
+    throw Error(SourceLoc{in.path},
+                "--two-sided names the materials and groups of a model (.obj, .ply, .gltf, "
+                ".glb); in a description, give the object a TwoSided Yes line instead");
+  }
   if (in.model.emit.empty()) return;
   throw Error(SourceLoc{in.path},
               "--emit names the materials of a model (.obj, .ply, .gltf, .glb); in a "

@@ -478,6 +478,31 @@ TEST(CommandLine, TexturedModelSolvedToObjWritesItsMtlAndImagesBesideIt) {
   fs::remove_all(dir);
 }
 
+TEST(CommandLine, TwoSidedNamesAModelsMaterialsAndIsRefusedForADescription) {
+  const fs::path dir = fs::temp_directory_path() / ("rad_test_two_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "box.mtl") << "newmtl White\nKd 0.7 0.7 0.7\nnewmtl Lamp\nKd 1 0.9 0.8\n";
+  std::ofstream(dir / "box.obj")
+      << "mtllib box.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0.4 0.9 0.4\nv 0.6 0.9 0.4\n"
+         "v 0.6 0.9 0.6\nv 0.4 0.9 0.6\no floor\nusemtl White\nf 1 4 3 2\no lamp\nusemtl Lamp\n"
+         "f 5 6 7 8\n";
+  const std::string obj = (dir / "box.obj").string();
+  RadRun r = run_rad("--check --emit 'La*=5' " + obj);
+  EXPECT_NE(r.out.find("Triangles: 4\n"), std::string::npos) << r.out;
+  r = run_rad("--check --emit 'La*=5' --two-sided 'Wh*' " + obj);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("Triangles: 6\n"), std::string::npos) << "the floor both ways: " << r.out;
+  EXPECT_NE(r.out.find("1 two-sided"), std::string::npos) << r.out;
+  r = run_rad("--check --emit 'La*=5' --two-sided 'Roof*' " + obj);
+  EXPECT_EQ(r.code, rad::kExitInputError);
+  EXPECT_NE(r.err.find("--two-sided 'Roof*' matches no material (White, Lamp)"), std::string::npos)
+      << r.err;
+  r = run_rad("--check --two-sided 'x' " + (kScenes / "cornell_box.des").string());
+  EXPECT_EQ(r.code, rad::kExitInputError);
+  EXPECT_NE(r.err.find("give the object a TwoSided Yes line"), std::string::npos) << r.err;
+  fs::remove_all(dir);
+}
+
 TEST(CommandLine, HelpListsTheOptions) {
   const RadRun r = run_rad("--help");
   EXPECT_EQ(r.code, 0);
