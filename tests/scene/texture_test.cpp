@@ -267,6 +267,40 @@ TEST(TextureCoordinates, GltfSaysOnceEachWhatItDoesNotRender) {
   EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
 }
 
+TEST(Texture, AnImageSharedByTwoMaterialsIsDecodedOnce) {
+  // glTF: two textures (two samplers' worth) of one image.
+  std::string gltf = textured_quad_gltf(four_by_two());
+  gltf = replaced(gltf, R"("materials": [{"name": "Wood",)",
+                  R"("materials": [{"name": "Oak", "pbrMetallicRoughness":
+                     {"baseColorTexture": {"index": 1}}}, {"name": "Wood",)");
+  gltf = replaced(gltf, R"("textures": [{"source": 0, "sampler": 0}])",
+                  R"("textures": [{"source": 0, "sampler": 0}, {"source": 0}])");
+  const Model g = parse_gltf(gltf, "two.gltf", "");
+  ASSERT_EQ(g.materials.size(), 2u);
+  ASSERT_TRUE(g.materials[0].base_texture);
+  EXPECT_EQ(g.materials[0].base_texture.image, g.materials[1].base_texture.image);
+  EXPECT_NE(g.materials[0].base_texture.sampler.wrap_s, g.materials[1].base_texture.sampler.wrap_s)
+      << "each texture its own sampler over the one image";
+
+  // OBJ: two materials naming one file, once through another spelling of its path.
+  const fs::path dir = fs::temp_directory_path() / ("rad_shared_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "wood.png", std::ios::binary) << four_by_two();
+  std::ofstream(dir / "two.mtl") << "newmtl Oak\nKd 1 1 1\nmap_Kd wood.png\n"
+                                    "newmtl Pine\nKd 1 1 1\nmap_Kd ./wood.png\n"
+                                    "newmtl Ash\nKd 1 1 1\nmap_Kd -clamp on wood.png\n";
+  std::ofstream(dir / "two.obj") << "mtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\n"
+                                    "usemtl Oak\nf 1/1 2/1 3/1\nusemtl Pine\nf 1/1 2/1 3/1\n"
+                                    "usemtl Ash\nf 1/1 2/1 3/1\n";
+  const Model o = read_obj_file((dir / "two.obj").string(), SourceLoc{});
+  fs::remove_all(dir);
+  ASSERT_EQ(o.materials.size(), 3u);
+  ASSERT_TRUE(o.materials[0].base_texture);
+  EXPECT_EQ(o.materials[0].base_texture.image, o.materials[1].base_texture.image);
+  EXPECT_EQ(o.materials[0].base_texture.image, o.materials[2].base_texture.image);
+  EXPECT_EQ(o.textures.read, 3u);
+}
+
 TEST(TextureCoordinates, ObjTurnsVtUpsideDownToTheImagesRows) {
   const fs::path dir = fs::temp_directory_path() / ("rad_texture_" + std::to_string(getpid()));
   fs::create_directories(dir);
