@@ -11,9 +11,11 @@ else
   BUILD="${RAD_BUILD_DIR:-$ROOT/build}"
 fi
 
-rad_packages=(g++ cmake ninja-build pkg-config libembree-dev libtbb-dev libglm-dev libgtest-dev
-  libgmock-dev libbenchmark-dev libcli11-dev libfmt-dev nlohmann-json3-dev libstb-dev
-  libtinyexr-dev libtinygltf-dev libcpp-httplib-dev libtinyobjloader-dev libopenmpi-dev openmpi-bin)
+# What building rad needs (rad_run_packages), and what its tests and benchmarks add.
+rad_run_packages=(g++ cmake ninja-build pkg-config libembree-dev libtbb-dev libglm-dev libcli11-dev
+  libfmt-dev nlohmann-json3-dev libstb-dev libtinyexr-dev libtinygltf-dev libcpp-httplib-dev
+  libtinyobjloader-dev libopenmpi-dev openmpi-bin)
+rad_packages=("${rad_run_packages[@]}" libgtest-dev libgmock-dev libbenchmark-dev)
 
 rad_install_missing() {
   local missing=()
@@ -89,6 +91,26 @@ rad_tsan_deps() {
 
 rad_build() {  # [TARGET...]: those only (default: everything, tests and benchmarks included)
   rad_install_missing "${rad_packages[@]}" || return
+  rad_configure -DRAD_BUILD_TESTS=ON -DRAD_BUILD_BENCH="$([ -n "$RAD_SANITIZE" ] && echo OFF || echo ON)" ||
+    return
+  cmake --build "$BUILD" -j "$(nproc)" ${1:+--target "$@"}
+}
+
+# What running rad needs: TARGET... built with the packages that building rad needs, none of the
+# tests' (tools/test installs those and builds the tests). A build folder made here has the tests
+# and benchmarks off; one that tools/test (or any rad_build) made keeps them on, so switching
+# between tools/run and tools/test rebuilds nothing rad is made of.
+rad_build_to_run() {  # TARGET...
+  rad_install_missing "${rad_run_packages[@]}" || return
+  if [ -f "$BUILD/CMakeCache.txt" ]; then
+    rad_configure || return
+  else
+    rad_configure -DRAD_BUILD_TESTS=OFF -DRAD_BUILD_BENCH=OFF || return
+  fi
+  cmake --build "$BUILD" -j "$(nproc)" --target "$@"
+}
+
+rad_configure() {  # [-DOPTION=VALUE...]: configures $BUILD (a second when nothing changed)
   local extra=()
   if [[ "$RAD_SANITIZE" == *thread* ]]; then
     local deps
@@ -97,11 +119,9 @@ rad_build() {  # [TARGET...]: those only (default: everything, tests and benchma
       -Dembree_DIR="$(echo "$deps"/lib/cmake/embree-*)")
     export LD_LIBRARY_PATH="$deps/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
   fi
-  # Configured every time (a second when nothing changed), so a changed option takes effect.
+  # Configured every time, so a changed option takes effect.
   cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DRAD_SANITIZE="$RAD_SANITIZE" ${RAD_SANITIZE:+-DRAD_BUILD_BENCH=OFF} "${extra[@]}" >/dev/null ||
-    return
-  cmake --build "$BUILD" -j "$(nproc)" ${1:+--target "$@"}
+    -DRAD_SANITIZE="$RAD_SANITIZE" "${extra[@]}" "$@" >/dev/null
 }
 
 # Node tools the tests use (the Khronos glTF validator), installed under build/npm. Not fatal:
@@ -118,7 +138,7 @@ rad_install_node_tools() {
 # (exact versions in tools/e2e/package.json) under build/web, where rad looks for them (web/
 # node_modules beside the rad executable), and Debian's Chromium for the end-to-end test. Not
 # fatal: rad serve says what is missing, and the browser test skips.
-rad_install_web() {  # [page]: the page's modules only, not the browser of its test
+rad_install_web() {  # [page]: the page's modules only (three, lil-gui), not its test's browser
   rad_install_missing libcpp-httplib-dev || echo "warning: could not install libcpp-httplib-dev"
   command -v npm >/dev/null 2>&1 || rad_install_missing nodejs npm || true
   if [ "${1:-}" != page ] && [ ! -x /usr/bin/chromium ]; then
@@ -126,7 +146,38 @@ rad_install_web() {  # [page]: the page's modules only, not the browser of its t
   fi
   command -v npm >/dev/null 2>&1 || { echo "warning: npm missing: rad serve has no page"; return 0; }
   local web="$BUILD/web"
+  local whole=1  # whether every module of package.json is installed at its version
   if ! cmp -s "$ROOT/tools/e2e/package.json" "$web/package.json" ||
+      [ ! -d "$web/node_modules/playwright-core" ]; then
+    whole=0
+  fi
+  if [ "${1:-}" = page ]; then
+    # three and lil-gui at package.json's versions, recorded in page-modules.txt.
+    local modules
+    modules="$(node -e 'const d = require(process.argv[1]).dependencies;
+      console.log(["three", "lil-gui"].map((n) => n + "@" + d[n]).join(" "))' \
+      "$ROOT/tools/e2e/package.json")" || { echo "warning: cannot read tools/e2e/package.json"; return 0; }
+    if ((whole)) && [ -f "$web/node_modules/three/build/three.module.js" ] &&
+        [ -f "$web/node_modules/lil-gui/dist/lil-gui.esm.min.js" ]; then
+      return 0
+    fi
+    if [ "$(cat "$web/page-modules.txt" 2>/dev/null)" = "$modules" ] &&
+        [ -f "$web/node_modules/three/build/three.module.js" ] &&
+        [ -f "$web/node_modules/lil-gui/dist/lil-gui.esm.min.js" ]; then
+      return 0
+    fi
+    mkdir -p "$web"
+    rm -f "$web/package.json" "$web/package-lock.json"  # or npm would install all of it
+    # shellcheck disable=SC2086
+    if npm install --prefix "$web" --no-save --no-audit --no-fund --loglevel=error $modules >/dev/null
+    then
+      echo "$modules" >"$web/page-modules.txt"
+    else
+      echo "warning: could not install $modules"
+    fi
+    return 0
+  fi
+  if ((whole == 0)) ||
       [ ! -f "$web/node_modules/three/build/three.module.js" ] ||
       [ ! -f "$web/node_modules/lil-gui/dist/lil-gui.esm.min.js" ] ||
       [ ! -d "$web/node_modules/playwright-core" ]; then
