@@ -43,7 +43,7 @@ struct VertexRays {
 /// A room's walls shoot every few tens of shots (the generated furnished room: each of its 10
 /// big clusters about every 20), a building's clusters once or twice in thousands of shots (the
 /// 1M-triangle building: 3,543 shots of 99k clusters in 600 s): kept from any third shot on,
-/// its answers filled 512 MiB and were never used.
+/// its answers would fill 512 MiB and never be used.
 inline constexpr uint64_t kKeptWithin = 64;
 
 /// Every cluster's kept answers, and when each last shot.

@@ -75,8 +75,8 @@ struct SolverOptions {
   /// the same points of a source through its first rays, so a penumbra would come in steps of
   /// one sample; the vertices that see all of a source or none of it pay nothing more but the
   /// corners' rays. Only for the shots of kPenumbraSampleShare. 0: off. 8: the umbra scene
-  /// (scenes/umbra.des) from 1.01% to 0.82% of mean error against its reference, for 2% more
-  /// shadow rays in the Cornell box (docs/solver.md).
+  /// (scenes/umbra.des) at 0.82% of mean error against its reference (1.01% with 0), for 2%
+  /// more shadow rays in the Cornell box (docs/solver.md).
   // Off by default: the final render separates each vertex's direct light by gathering it again
   // with the shots' own ray ends (solver/direct_light.h), which extra rounds make inexact
   // (tools/bench --pictures: 0.295% -> 0.326% on the Cornell box, 0.325% -> 0.611% on the

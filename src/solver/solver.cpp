@@ -29,7 +29,7 @@ constexpr double kShotOverhead = 1000.0;
 // floors, its chairs' seats).
 size_t area_bin(float area) {
   // frexp's exponent, read off the bits of a positive normal float (a pass over every cluster
-  // each shot: the library call was a tenth of it).
+  // each shot, of which the library call would take a tenth).
   const uint32_t biased = (std::bit_cast<uint32_t>(area) >> 23) & 0xffu;
   int e = int(biased) - 126;
   if (biased == 0 || biased == 0xffu || std::signbit(area)) std::frexp(double(area), &e);
