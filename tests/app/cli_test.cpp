@@ -12,30 +12,14 @@
 #include <fstream>
 #include <string>
 
+#include "run_rad.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct RadRun {
-  int code;
-  std::string out, err;
-};
-
-RadRun run_rad(const std::string& args) {
-  const fs::path err_file = fs::temp_directory_path() / ("rad_cli_err_" + std::to_string(getpid()));
-  const std::string cmd = std::string(RAD_BINARY_DIR "/rad ") + args + " 2>" + err_file.string();
-  RadRun r{};
-  FILE* p = popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err_file);
-  r.err.assign(std::istreambuf_iterator<char>(e), {});
-  fs::remove(err_file);
-  return r;
-}
+using rad::testing::RadRun;
+using rad::testing::run_rad;
 
 std::string first_line(const std::string& s) { return s.substr(0, s.find('\n')); }
 
