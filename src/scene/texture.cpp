@@ -120,11 +120,48 @@ Vec4 bilinear(const TextureImage::Level& l, double u, double v, const TextureSam
 
 }  // namespace
 
+namespace {
+
+// stb_image 2.27 (Debian's) trusts the 16 code counts of a JPEG Huffman table (DHT) to sum to
+// at most 256 and writes past its tables when they do not (fuzzing found it; stb 2.28 checks).
+// False for a JPEG with such a table, which is no valid JPEG; true for anything else.
+bool jpeg_tables_fit(const unsigned char* b, size_t n) {
+  if (n < 2 || b[0] != 0xFF || b[1] != 0xD8) return true;
+  for (size_t i = 2; i + 4 <= n;) {
+    const unsigned char m = b[i + 1];
+    // Entropy-coded data, fill bytes, stuffed zeros and restart markers carry no length.
+    if (b[i] != 0xFF || m == 0xFF) {
+      ++i;
+      continue;
+    }
+    if (m == 0x00 || m == 0x01 || (m >= 0xD0 && m <= 0xD7)) {
+      i += 2;
+      continue;
+    }
+    if (m == 0xD9) break;  // end of image
+    const size_t length = size_t(b[i + 2]) << 8 | b[i + 3];
+    if (m == 0xC4) {
+      const size_t end = std::min(n, i + 2 + length);
+      for (size_t at = i + 4; at + 17 <= end;) {
+        size_t codes = 0;
+        for (size_t k = 1; k <= 16; ++k) codes += b[at + k];
+        if (codes > 256) return false;
+        at += 17 + codes;
+      }
+    }
+    i += 2 + length;
+  }
+  return true;
+}
+
+}  // namespace
+
 std::shared_ptr<TextureImage> decode_texture(const unsigned char* bytes, size_t size,
                                              std::string name) {
   int w = 0, h = 0, channels = 0;
-  if (size > size_t(INT32_MAX) || !stbi_info_from_memory(bytes, int(size), &w, &h, &channels) ||
-      w <= 0 || h <= 0 || double(w) * double(h) > kMaxPixels) {
+  if (size > size_t(INT32_MAX) || !jpeg_tables_fit(bytes, size) ||
+      !stbi_info_from_memory(bytes, int(size), &w, &h, &channels) || w <= 0 || h <= 0 ||
+      double(w) * double(h) > kMaxPixels) {
     return nullptr;
   }
   return make_image(stbi_load_from_memory(bytes, int(size), &w, &h, &channels, 4), w, h,
