@@ -391,16 +391,22 @@ TEST(CommandLine, SolveThatCouldOutgrowTheMemoryLimitIsRefusedWithTheEstimate) {
       rad::kExitUsage);
 }
 
-// A model file is a scene: without an emitting material rad says which option makes one emit;
-// with --emit it solves and writes.
-TEST(CommandLine, SolvesAnObjModelWhoseLampIsNamedByEmit) {
-  const fs::path dir = fs::temp_directory_path() / ("rad_test_obj_" + std::to_string(getpid()));
-  fs::create_directories(dir);
+// dir/box.obj and box.mtl: a floor (material White, object floor) under a small square facing
+// it (material Lamp, object lamp) that emits nothing until a pattern names it.
+void write_lamp_over_floor(const fs::path& dir) {
   std::ofstream(dir / "box.mtl") << "newmtl White\nKd 0.7 0.7 0.7\nnewmtl Lamp\nKd 1 0.9 0.8\n";
   std::ofstream(dir / "box.obj")
       << "mtllib box.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0.4 0.9 0.4\nv 0.6 0.9 0.4\n"
          "v 0.6 0.9 0.6\nv 0.4 0.9 0.6\no floor\nusemtl White\nf 1 4 3 2\no lamp\nusemtl Lamp\n"
          "f 5 6 7 8\n";
+}
+
+// A model file is a scene: without an emitting material rad says which option makes one emit;
+// with --emit it solves and writes.
+TEST(CommandLine, SolvesAnObjModelWhoseLampIsNamedByEmit) {
+  const fs::path dir = fs::temp_directory_path() / ("rad_test_obj_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  write_lamp_over_floor(dir);
   const std::string obj = (dir / "box.obj").string(), ply = (dir / "out.ply").string();
   RadRun r = run_rad("-q --max-shots 3 " + obj + " " + ply);
   EXPECT_EQ(r.code, 1);
@@ -463,11 +469,7 @@ TEST(CommandLine, TexturedModelSolvedToObjWritesItsMtlAndImagesBesideIt) {
 TEST(CommandLine, TwoSidedNamesAModelsMaterialsAndIsRefusedForADescription) {
   const fs::path dir = fs::temp_directory_path() / ("rad_test_two_" + std::to_string(getpid()));
   fs::create_directories(dir);
-  std::ofstream(dir / "box.mtl") << "newmtl White\nKd 0.7 0.7 0.7\nnewmtl Lamp\nKd 1 0.9 0.8\n";
-  std::ofstream(dir / "box.obj")
-      << "mtllib box.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0.4 0.9 0.4\nv 0.6 0.9 0.4\n"
-         "v 0.6 0.9 0.6\nv 0.4 0.9 0.6\no floor\nusemtl White\nf 1 4 3 2\no lamp\nusemtl Lamp\n"
-         "f 5 6 7 8\n";
+  write_lamp_over_floor(dir);
   const std::string obj = (dir / "box.obj").string();
   RadRun r = run_rad("--check --emit 'La*=5' " + obj);
   EXPECT_NE(r.out.find("Triangles: 4\n"), std::string::npos) << r.out;
