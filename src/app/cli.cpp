@@ -93,6 +93,13 @@ class OptionGroup {
   CLI::App& app_;
 };
 
+// An option given once per value (--emit 'A=1' --emit 'B=2', --image a.png --image b.hdr), all
+// kept in order: one value each, or a vector option would swallow the positionals after it
+// (`--image out.png scene.des out.ply`).
+void repeatable(CLI::Option* o) {
+  o->expected(1)->allow_extra_args(false)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+}
+
 // --emit, --light-group, --stage, --sun and --hierarchy: how a scene file is read, for every mode.
 struct SceneReading {
   std::vector<std::string> emit;
@@ -105,26 +112,19 @@ struct SceneReading {
 
   void add_to(CLI::App& app, const char* emit_help, const char* hierarchy_help) {
     const OptionGroup group(app, "Scene");
-    app.add_option("--emit", emit, emit_help)
-        ->expected(1)
-        ->allow_extra_args(false)
-        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-    app.add_option("--light-group", light_groups,
-                   "For a model: its materials and lights whose name matches the pattern are in "
-                   "light group NAME, e.g. --light-group 'Lamp*=kitchen' (repeatable; a "
-                   "description says 'Group \"NAME\"'). Each group's light is solved and written "
-                   "on its own, to be mixed after the solve; the last match wins")
-        ->expected(1)
-        ->allow_extra_args(false)
-        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-    app.add_option("--two-sided", two_sided,
-                   "For a model: its materials, and its groups (OBJ o and g, glTF nodes), whose "
-                   "name matches the pattern are two-sided, lit and shooting on both faces, "
-                   "e.g. --two-sided 'Leaf*' (repeatable; glTF says doubleSided, a description "
-                   "'TwoSided Yes')")
-        ->expected(1)
-        ->allow_extra_args(false)
-        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    repeatable(app.add_option("--emit", emit, emit_help));
+    repeatable(app.add_option(
+        "--light-group", light_groups,
+        "For a model: its materials and lights whose name matches the pattern are in "
+        "light group NAME, e.g. --light-group 'Lamp*=kitchen' (repeatable; a "
+        "description says 'Group \"NAME\"'). Each group's light is solved and written "
+        "on its own, to be mixed after the solve; the last match wins"));
+    repeatable(app.add_option(
+        "--two-sided", two_sided,
+        "For a model: its materials, and its groups (OBJ o and g, glTF nodes), whose "
+        "name matches the pattern are two-sided, lit and shooting on both faces, "
+        "e.g. --two-sided 'Leaf*' (repeatable; glTF says doubleSided, a description "
+        "'TwoSided Yes')"));
     app.add_flag("--stage", stage, kStageHelp);
     // The angles are optional: --sun alone is the default sun.
     sun_option = app.add_option("--sun", sun, kSunHelp)->expected(0, 1);
@@ -290,15 +290,10 @@ struct Showing {
         ->capture_default_str();
     app.add_option("--exposure", o.exposure, "Stops added to the automatic exposure")
         ->capture_default_str();
-    // One value per --image (repeat the option for more images): a vector option would
-    // otherwise swallow the positionals after it (`--image out.png scene.des out.ply`).
     if (images) {
-      app.add_option("--image", o.images,
-                     "Render the solved scene to this image: .png (tone-mapped sRGB) or linear "
-                     ".hdr, .exr, .pfm (repeatable)")
-          ->expected(1)
-          ->allow_extra_args(false)
-          ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+      repeatable(app.add_option("--image", o.images,
+                                "Render the solved scene to this image: .png (tone-mapped sRGB) or "
+                                "linear .hdr, .exr, .pfm (repeatable)"));
     }
     app.add_option(
         "--camera", camera,
