@@ -976,7 +976,7 @@ TEST(CommandLine, StageLightsAModelAndIsRefusedForADescription) {
   fs::create_directories(dir);
   std::ofstream(dir / "quad.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
   const std::string obj = (dir / "quad.obj").string(), ply = (dir / "out.ply").string();
-  for (const std::string& flags : {"--stage", "--sun", "--stage --sun 30,60"}) {
+  for (const std::string flags : {"--stage", "--sun", "--stage --sun 30,60"}) {
     const RadRun r = run_rad(obj + " " + ply + " " + flags + " --image " +
                              (dir / "o.png").string() + " --size 64x64 --render preview");
     EXPECT_EQ(r.code, 0) << flags << ": " << r.err;

@@ -51,7 +51,8 @@ std::unique_ptr<Solved> solve_scene(const SceneInput& in) {
 
 TEST(SceneUnit, APointLightTwoMetresUpInCentimetresGivesAQuarterOfItsCandelaAtItsFoot) {
   const fs::path cm = write_lamp_scene(100.0);
-  SceneInput in{.path = cm.string()};
+  SceneInput in;
+  in.path = cm.string();
   in.unit = 0.01;
   const auto lit = solve_scene(in);
   double foot = 0.0;
@@ -80,7 +81,7 @@ TEST(SceneUnit, APointLightTwoMetresUpInCentimetresGivesAQuarterOfItsCandelaAtIt
   EXPECT_NEAR(object_illuminance(far->s)[0].max, 400.0 / (200.0 * 200.0), 1e-5);
   // And the scene written in metres is lit as the one in centimetres.
   const fs::path m = write_lamp_scene(1.0);
-  const auto metres = solve_scene(SceneInput{.path = m.string()});
+  const auto metres = solve_scene(SceneInput{m.string(), {}, {}, {}});
   EXPECT_NEAR(object_illuminance(metres->s)[0].mean, o[0].mean, 1e-4 * o[0].mean);
   fs::remove(cm), fs::remove(m);
 }
@@ -101,7 +102,8 @@ TEST(SceneUnit, OnlyPointAndSpotLightsDependOnTheUnit) {
 }
 
 TEST(SceneUnit, GltfIsInMetresWhateverUnitSays) {
-  SceneInput in{.path = "room.des"};
+  SceneInput in;
+  in.path = "room.des";
   EXPECT_EQ(metres_per_unit(in), 1.0);
   in.unit = 0.0254;
   EXPECT_EQ(metres_per_unit(in), 0.0254);

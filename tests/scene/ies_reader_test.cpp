@@ -147,7 +147,9 @@ void expect_refused(const std::string& text, int line, int column, const std::st
   } catch (const Error& e) {
     EXPECT_EQ(e.loc().file, "bad.ies");
     EXPECT_EQ(e.loc().line, line) << e.what();
-    if (column) EXPECT_EQ(e.loc().column, column) << e.what();
+    if (column) {
+      EXPECT_EQ(e.loc().column, column) << e.what();
+    }
     EXPECT_NE(e.message().find(what), std::string::npos) << e.what();
   }
 }

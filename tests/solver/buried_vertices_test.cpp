@@ -201,7 +201,7 @@ TEST(BuriedVertices, ElementsAcrossTheEdgeOfACoverSplitBelowTheSmallestSize) {
 INSTANTIATE_TEST_SUITE_P(AllBackends, BuriedVertexTest,
                          ::testing::Values(BackendKind::Embree, BackendKind::Grid,
                                            BackendKind::Brute),
-                         [](const auto& info) { return std::string(to_string(info.param)); });
+                         [](const auto& test) { return std::string(to_string(test.param)); });
 
 }  // namespace
 }  // namespace rad

@@ -120,7 +120,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Placement{"Turned", 8, Vec3(0.0f), 33.0f, 1.0f},
                       Placement{"ScaledUp", 8, Vec3(0.0f), 0.0f, 10.0f},
                       Placement{"ScaledDownTurnedMoved", 8, Vec3(-3.0f, 1.0f, 2.0f), 71.0f, 0.01f}),
-    [](const auto& info) { return std::string(info.param.name); });
+    [](const auto& test) { return std::string(test.param.name); });
 
 TEST(Lights, OneCandelaOneMetreStraightAboveGivesOneLux) {
   Hierarchy h = build_hierarchy(black_floor());

@@ -129,7 +129,7 @@ TEST_P(FlaggedScene, AGroupsFlagsHoldForEverythingInside) {
 INSTANTIATE_TEST_SUITE_P(EveryBackend, FlaggedScene,
                          ::testing::Values(BackendKind::Embree, BackendKind::Grid,
                                            BackendKind::Brute),
-                         [](const auto& info) { return std::string(to_string(info.param)); });
+                         [](const auto& test) { return std::string(to_string(test.param)); });
 
 }  // namespace
 }  // namespace rad

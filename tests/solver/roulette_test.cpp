@@ -103,7 +103,9 @@ TEST(Roulette, APointsGainIsAtMostTheLevelTimesItsQ) {
     if (q >= 1.0f) continue;
     ++bounded;
     ASSERT_LE(gain, level * q * 1.02f + 1e-9f) << "at " << x.x << " " << x.y << " " << x.z;
-    if (q == 0.0f) EXPECT_EQ(gain, 0.0f);
+    if (q == 0.0f) {
+      EXPECT_EQ(gain, 0.0f);
+    }
   }
   EXPECT_GT(bounded, 3000);
 }
