@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 
@@ -154,12 +155,29 @@ bool jpeg_tables_fit(const unsigned char* b, size_t n) {
   return true;
 }
 
+// stb_image 2.27 grows its buffer for a PNG's image data to what each IDAT chunk's length says
+// before reading it: a few bytes claiming a 1.4 GB chunk allocate 1.4 GB (fuzzing found it).
+// False for a PNG with a chunk longer than the bytes left, which is no valid PNG (a truncated
+// one); true for anything else.
+bool png_chunks_fit(const unsigned char* b, size_t n) {
+  static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  if (n < 8 || std::memcmp(b, kSignature, 8) != 0) return true;
+  for (size_t i = 8; i + 8 <= n;) {
+    const size_t length =
+        size_t(b[i]) << 24 | size_t(b[i + 1]) << 16 | size_t(b[i + 2]) << 8 | size_t(b[i + 3]);
+    if (length > n - i - 8) return false;  // its data, before its 4-byte CRC, past the end
+    if (std::memcmp(b + i + 4, "IEND", 4) == 0) break;
+    i += 12 + length;
+  }
+  return true;
+}
+
 }  // namespace
 
 std::shared_ptr<TextureImage> decode_texture(const unsigned char* bytes, size_t size,
                                              std::string name) {
   int w = 0, h = 0, channels = 0;
-  if (size > size_t(INT32_MAX) || !jpeg_tables_fit(bytes, size) ||
+  if (size > size_t(INT32_MAX) || !jpeg_tables_fit(bytes, size) || !png_chunks_fit(bytes, size) ||
       !stbi_info_from_memory(bytes, int(size), &w, &h, &channels) || w <= 0 || h <= 0 ||
       double(w) * double(h) > kMaxPixels) {
     return nullptr;

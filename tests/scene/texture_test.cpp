@@ -115,6 +115,19 @@ TEST(Texture, WhatIsNotAnImageIsNoTexture) {
   EXPECT_FALSE(read_texture_file("/nonexistent/rad/texture.png"));
 }
 
+// A PNG chunk whose length says more than the file holds is refused before stb_image sizes its
+// buffer by it (tests/scene/fuzz_regressions/gltf/png_chunk_longer_than_its_file.gltf).
+TEST(Texture, APngChunkLongerThanItsFileIsNoTexture) {
+  std::string bytes = four_by_two();
+  const size_t idat = bytes.find("IDAT");
+  ASSERT_NE(idat, std::string::npos);
+  ASSERT_TRUE(decode(bytes));
+  for (const uint32_t length : {0x54000000u, uint32_t(bytes.size())}) {
+    for (int k = 0; k < 4; ++k) bytes[idat - 4 + size_t(k)] = char(length >> (24 - 8 * k));
+    EXPECT_FALSE(decode(bytes)) << length;
+  }
+}
+
 // A unit quad with texture coordinates, its material's base texture (sampler: clamp in s,
 // nearest) read through KHR_texture_transform.
 // `image` is the PNG's bytes, embedded; with `uri` the image is that external file instead.
