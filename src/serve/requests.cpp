@@ -110,13 +110,6 @@ LightRequest parse_light_request(std::string_view body, const Hierarchy& h) {
   if (h.lights.empty()) throw BadRequest("the scene has no lights");
   LightRequest r;
   r.light = integer_field(j, "light", 0, int64_t(h.lights.size()) - 1);
-  const Light& l = h.lights[size_t(r.light)];
-  if (!(l.intensity > 0.0f)) {
-    throw BadRequest(fmt::format(
-        "light {} ('{}') has intensity 0 in the scene: only a light the scene turns on can be "
-        "changed",
-        r.light, l.name));
-  }
   if (j.contains("colour") && j.contains("color")) {
     throw BadRequest("give 'colour' or 'color', not both");
   }

@@ -52,11 +52,8 @@ std::string scene_json(const Hierarchy& h, const Camera& camera, double converge
   json lights = json::array();
   for (size_t i = 0; i < h.lights.size(); ++i) {
     const Light& l = h.lights[i];
-    json j{{"id", i},
-           {"name", l.name},
-           {"kind", to_string(l.kind)},
-           {"unit", intensity_unit(l.kind)},
-           {"editable", l.intensity > 0.0f}};
+    json j{
+        {"id", i}, {"name", l.name}, {"kind", to_string(l.kind)}, {"unit", intensity_unit(l.kind)}};
     if (l.kind != LightKind::Directional) j["position"] = vec(l.position);
     if (l.kind != LightKind::Point) j["direction"] = vec(l.direction);
     lights.push_back(std::move(j));

@@ -96,12 +96,6 @@ bool Session::edit_light(int32_t light, const LightPatch& patch) {
   if (light < 0 || size_t(light) >= h_.lights.size()) {
     throw Error(fmt::format("light {} does not exist (the scene has {})", light, h_.lights.size()));
   }
-  if (!(h_.lights[size_t(light)].intensity > 0.0f)) {
-    throw Error(
-        fmt::format("light '{}' has intensity 0 in the scene: only a light the scene "
-                    "turns on can be changed",
-                    h_.lights[size_t(light)].name));
-  }
   std::lock_guard lock(mutex_);
   const LightControls c = apply_patch(requested_light_controls_[size_t(light)], patch);
   if (auto why = controls_error(c)) throw Error(*why);

@@ -210,7 +210,7 @@ void read_checkpoint(const std::string& path, SolverState& s, uint64_t fingerpri
   std::vector<ShotSource> log;
   const size_t groups = s.solution.group_count;
   for (uint64_t i = 0; i < logged; ++i) {
-    log.push_back(read_shot(r, s.scene.clusters.size(), s.solution.hierarchy->lights,
+    log.push_back(read_shot(r, s.scene.clusters.size(), s.scene.shooting_lights,
                             s.solution.hierarchy->bounds));
     // The gather indexes the groups by these without checking them.
     const ShotSource& k = log.back();

@@ -24,13 +24,12 @@ DirectLight make_direct_light(const SolverState& s, uint32_t variants) {
   }
   const Hierarchy& h = *s.solution.hierarchy;
   for (size_t i = 0; i < h.lights.size(); ++i) {
-    // As edited (set_light): what it shoots is in units of the scene's light.
-    Vec3 colour = h.lights[i].colour;
-    if (i < s.solution.lights.size() && h.lights[i].intensity > 0.0f) {
-      const LightSetting& edited = s.solution.lights[i];
-      colour = edited.colour * (edited.intensity / h.lights[i].intensity);
-    }
-    d.sources.push_back(make_light_source(h.lights, int32_t(i), colour, h.bounds));
+    // As edited (set_light): what it shoots is in units of its shots' intensity (light_unit).
+    const LightSetting edited = i < s.solution.lights.size()
+                                    ? s.solution.lights[i]
+                                    : LightSetting{h.lights[i].colour, h.lights[i].intensity};
+    const Vec3 colour = edited.colour * (edited.intensity / light_unit(h.lights[i]));
+    d.sources.push_back(make_light_source(s.scene.shooting_lights, int32_t(i), colour, h.bounds));
   }
   if (!s.scene.culling.empty()) {
     // Each source's unhidden triangles once, kept as runs of consecutive indices (a room's

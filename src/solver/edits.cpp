@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "mesh/subdivide.h"
+#include "solver/light_source.h"
 #include "solver/refine.h"
 #include "solver/shoot.h"
 #include "solver/solver.h"
@@ -84,12 +85,6 @@ void set_light(Solution& sol, EnergyBalance& energy, int32_t light, const Vec3& 
       throw Error(fmt::format("light '{}': colour must be finite and >= 0", l.name));
     }
   }
-  if (!(l.intensity > 0.0f)) {
-    throw Error(
-        fmt::format("light '{}' has intensity 0 in the scene: only a light the scene "
-                    "turns on can be changed",
-                    l.name));
-  }
   std::vector<LightSetting>& settings = sol.lights;
   // A state built without its lights' settings starts from the scene's.
   if (settings.size() != lights.size()) {
@@ -97,9 +92,9 @@ void set_light(Solution& sol, EnergyBalance& energy, int32_t light, const Vec3& 
     for (const Light& x : lights) settings.push_back({x.colour, x.intensity});
   }
   LightSetting& now = settings[size_t(light)];
-  // In units of the scene's light, which every shot of it scales (light_source.h); computed in
-  // double so that setting the scene's own values back leaves no rounding to shoot.
-  const double scale = 1.0 / double(l.intensity);
+  // In units of the light's shots (light_source.h: light_unit); computed in double so that
+  // setting the scene's own values back leaves no rounding to shoot.
+  const double scale = 1.0 / double(light_unit(l));
   Vec3 d;
   for (int k = 0; k < 3; ++k) {
     d[k] = float(

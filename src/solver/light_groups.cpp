@@ -19,8 +19,10 @@ std::vector<std::string> light_group_names(const Hierarchy& h) {
                        o.triangle_count > 0;
     if (emits) add(o.group);
   }
+  // A light the scene leaves off (intensity 0) may be turned on by an edit: a group it names is
+  // kept for it.
   for (const Light& l : h.lights) {
-    if (l.intensity > 0.0f && max_component(l.colour) > 0.0f) add(l.group);
+    if ((l.intensity > 0.0f && max_component(l.colour) > 0.0f) || !l.group.empty()) add(l.group);
   }
   return names;
 }

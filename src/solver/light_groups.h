@@ -18,7 +18,8 @@ inline constexpr size_t kMaxLightGroups = 32;
 
 /// The groups of a scene's emitters, in order of first appearance (objects, then lights); "" is
 /// the default group, of every emitter given none. Only emitters count: a group holding no
-/// object with emission and no light with intensity is not one.
+/// object with emission and no light with intensity is not one, unless a light the scene leaves
+/// off names it (an edit may turn that light on).
 std::vector<std::string> light_group_names(const Hierarchy& h);
 
 /// The light groups a solve of `h` keeps apart: its light_group_names when there are two or

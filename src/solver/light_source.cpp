@@ -26,6 +26,12 @@ void frame(const Vec3& a, Vec3& e1, Vec3& e2) {
 
 }  // namespace
 
+std::vector<Light> shooting_lights(const std::vector<Light>& lights) {
+  std::vector<Light> at_unit = lights;
+  for (Light& l : at_unit) l.intensity = light_unit(l);
+  return at_unit;
+}
+
 ShotSource make_light_source(const std::vector<Light>& lights, int32_t index, const Vec3& colour,
                              const Aabb& bounds) {
   assert(index >= 0 && size_t(index) < lights.size());

@@ -13,9 +13,17 @@ namespace rad {
 /// penumbra is their mean.
 inline constexpr size_t kSunRays = 16;
 
-/// Light `index` of `lights` frozen as the source of a shot that shoots `colour` (per channel:
-/// the light's colour, or an edit's change of it). `bounds` is the scene's box: a directional
-/// light's rays end beyond it.
+/// The intensity a light's shots are in units of (ShotSource::light_colour and the energy's
+/// light_unshot multiply it): the scene's, or 1 for a light the scene gives intensity 0, so that
+/// an edit can still turn that one on.
+inline float light_unit(const Light& l) { return l.intensity > 0.0f ? l.intensity : 1.0f; }
+
+/// The scene's lights as they shoot: each with its light_unit intensity.
+std::vector<Light> shooting_lights(const std::vector<Light>& lights);
+
+/// Light `index` of `lights` (shooting_lights) frozen as the source of a shot that shoots `colour`
+/// (per channel: the light's colour, or an edit's change of it). `bounds` is the scene's box: a
+/// directional light's rays end beyond it.
 ShotSource make_light_source(const std::vector<Light>& lights, int32_t index, const Vec3& colour,
                              const Aabb& bounds);
 

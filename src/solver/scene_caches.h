@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "scene/light.h"
 #include "solver/buried_vertices.h"
 #include "solver/clusters.h"
 #include "solver/occlusion_culling.h"
@@ -22,6 +23,9 @@ struct SceneCaches {
   /// The flat occluders and the tree over the triangles that cull receivers hidden from a source
   /// (empty without shadows).
   OcclusionCulling culling;
+  /// The scene's lights as they shoot (light_source.h: shooting_lights), which their shots'
+  /// sources point to.
+  std::vector<Light> shooting_lights;
   float min_size = 0.0f;  // smallest element edge
   float max_size = 0.0f;  // largest element edge of the initial mesh
   float shadow_offset = 0.0f;

@@ -236,7 +236,7 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
                                   [](const Vec3& u) { return u != Vec3(0.0f); });
   if (light != s.energy.light_unshot.end()) {
     const int32_t i = int32_t(light - s.energy.light_unshot.begin());
-    src = make_light_source(s.solution.hierarchy->lights, i, *light, s.solution.hierarchy->bounds);
+    src = make_light_source(s.scene.shooting_lights, i, *light, s.solution.hierarchy->bounds);
     if (s.solution.group_count > 0) src.light_group = int32_t(s.solution.light_group[size_t(i)]);
     *light = Vec3(0.0f);
   } else {

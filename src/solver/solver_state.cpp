@@ -73,16 +73,16 @@ EnergyBalance start_from_emission(Solution& sol) {
     total_area += h.triangles.area[t];
   }
   // The lights shoot first (solver.cpp), their power counted with the surfaces' emission. What
-  // a light shoots is in units of the scene's light (light_source.h): its setting over the
-  // scene's intensity.
+  // a light shoots is in units of its shots' intensity (light_source.h: light_unit): its
+  // setting over that.
+  const std::vector<Light> shooting = shooting_lights(h.lights);
   for (size_t i = 0; i < h.lights.size(); ++i) {
     const Light& l = h.lights[i];
     const LightSetting& now = sol.lights[i];
-    energy.light_unshot.push_back(
-        now.intensity == l.intensity
-            ? now.colour
-            : (l.intensity > 0.0f ? now.colour * (now.intensity / l.intensity) : Vec3(0.0f)));
-    energy.light_power.push_back(light_power(l, h.bounds));
+    energy.light_unshot.push_back(now.intensity == l.intensity && l.intensity > 0.0f
+                                      ? now.colour
+                                      : now.colour * (now.intensity / light_unit(l)));
+    energy.light_power.push_back(light_power(shooting[i], h.bounds));
   }
   energy.emitted_energy += energy.light_unshot_energy();
   energy.reference_energy = energy.emitted_energy;
@@ -140,6 +140,7 @@ SolverState make_solver_state(const Hierarchy& h, const SolverOptions& options) 
   if (sol.group_count > 0) s.options.overshoot = false;
   energy = start_from_emission(sol);
   scene.shadow_offset = shadow_offset(h.bounds);
+  scene.shooting_lights = shooting_lights(h.lights);
   assert(options.sample_grid >= 1 && options.max_sample_grid <= 64);
   const int max_m = std::max(options.sample_grid, options.max_sample_grid);
   // A cluster's n <= max_m^2 strata each stand for at most one initial element's square: its

@@ -279,9 +279,7 @@ TEST(LightEdits, TheSceneListsItsLightsAndTheirEditsContinueTheSolve) {
   EXPECT_EQ(scene["lights"][0]["name"], "bulb");
   EXPECT_EQ(scene["lights"][0]["kind"], "point");
   EXPECT_EQ(scene["lights"][0]["unit"], "cd");
-  EXPECT_EQ(scene["lights"][0]["editable"], true);
   EXPECT_EQ(scene["lights"][1]["unit"], "lx");
-  EXPECT_EQ(scene["lights"][1]["editable"], false);
 
   json st = converged_after(0);
   ASSERT_EQ(st["status"], "converged");
@@ -314,9 +312,19 @@ TEST(LightEdits, TheSceneListsItsLightsAndTheirEditsContinueTheSolve) {
   EXPECT_EQ(st["lights"][0]["colour"], json::array({1.0, 0.5, 0.25})) << "kept for switching on";
   EXPECT_LT(std::abs(total_radiosity().x), 0.01 * white.x);
 
+  // The sun the scene leaves off (intensity 0) turned on: it lights the box.
+  shots = st["shots"].get<int64_t>();
+  r = post({{"light", 1}, {"intensity", 3}});
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 202) << r->body;
+  st = converged_after(shots);
+  ASSERT_EQ(st["status"], "converged");
+  EXPECT_EQ(st["lights"][1]["intensity"].get<double>(), 3.0);
+  EXPECT_GT(total_radiosity().x, 0.0);
+
   // Bad edits: 400 with a message, nothing queued.
   for (const json& bad :
-       {json{{"light", 1}, {"intensity", 3}}, json{{"light", 2}, {"intensity", 1}},
+       {json{{"light", 1}, {"intensity", -3}}, json{{"light", 2}, {"intensity", 1}},
         json{{"light", 0}, {"intensity", -1}}, json{{"light", 0}},
         json{{"light", 0}, {"colour", {2, 0, 0}}}, json{{"light", 0}, {"power", 3}}}) {
     r = post(bad);

@@ -40,8 +40,9 @@ Object "off" Light { Type Point Position <0 1 0> Intensity 0 Group "off" }
 TEST(LightGroups, AnObjectsGroupReachesWhatEmitsBelowItUnlessALightNamesItsOwn) {
   const Hierarchy h = build_hierarchy(parse_scene_text(kGrouped, "grouped.des"));
   // Emitting objects first (kitchen's panel, porch's panel, the lamp), then lights; a group
-  // with nothing that emits ("off", an unlit light's) is none.
-  EXPECT_EQ(light_group_names(h), (std::vector<std::string>{"kitchen", "porch", "", "night"}));
+  // named by a light the scene leaves off ("off") is kept for an edit that turns it on.
+  EXPECT_EQ(light_group_names(h),
+            (std::vector<std::string>{"kitchen", "porch", "", "night", "off"}));
   ASSERT_EQ(h.lights.size(), 5u);
   EXPECT_EQ(h.lights[0].group, "kitchen");  // bulb: its Assembly's
   EXPECT_EQ(h.lights[1].group, "night");    // its own

@@ -275,7 +275,8 @@ function refreshControls(force) {
 }
 
 // The scene's lights: colour, intensity in its unit (cd or lx) and a switch. Off is intensity 0;
-// on again restores the intensity it had.
+// on again restores the intensity it had (a light the scene leaves off is turned on by giving it
+// an intensity).
 const lightControls = [];
 function buildLights() {
   if (!scene.lights || scene.lights.length === 0) return;
@@ -301,10 +302,6 @@ function buildLights() {
     colour.domElement.dataset.control = `light-${l.id}-colour`;
     intensity.domElement.dataset.control = `light-${l.id}-intensity`;
     on.domElement.dataset.control = `light-${l.id}-on`;
-    if (!l.editable) {
-      for (const c of [colour, intensity, on]) c.disable();
-      folder.domElement.title = 'intensity 0 in the scene: nothing to scale';
-    }
     lightControls.push({ state, colour, intensity, on });
   }
 }
