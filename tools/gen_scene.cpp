@@ -3,10 +3,13 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 
 #include "core/error.h"
+#include "scene/ies_reader.h"
 #include "scenegen/scenegen.h"
 
 int main(int argc, char** argv) {
@@ -26,14 +29,30 @@ int main(int argc, char** argv) {
   app.add_option("--light-groups", light_groups,
                  "building: the rooms dealt round this many light groups, g0, g1, ... (0: none)")
       ->check(CLI::Range(0, 32));
-  bool point_lights = false;
-  app.add_flag("--point-lights", point_lights,
-               "building: each room lit by a point light of the ceiling panel's on-axis "
-               "intensity instead of by the panel");
+  bool point_lights = false, downlights = false;
+  auto* points =
+      app.add_flag("--point-lights", point_lights,
+                   "building: each room lit by a point light of the ceiling panel's on-axis "
+                   "intensity, the same every way, instead of by the panel");
+  app.add_flag("--downlights", downlights,
+               "building: each room lit by a light whose IES distribution is the ceiling panel's "
+               "(written beside OUT as OUT's name with .ies) instead of by the panel")
+      ->excludes(points);
   CLI11_PARSE(app, argc, argv);
   try {
+    rad::RoomLighting lighting;
+    if (point_lights) lighting.kind = rad::RoomLighting::Kind::Point;
+    if (downlights) {
+      // The file the description names, beside it; parsed back, so the light is what rad reads.
+      const std::string ies = std::filesystem::path(out_path).replace_extension(".ies").string();
+      const std::string text = rad::downlight_ies();
+      std::ofstream file(ies);
+      if (!(file << text)) throw rad::Error(fmt::format("cannot write {}", ies));
+      lighting.kind = rad::RoomLighting::Kind::Downlight;
+      lighting.downlight = std::make_shared<const rad::Photometry>(rad::parse_ies(text, ies));
+    }
     rad::SceneDescription scene = rad::generate_scene(rad::parse_scene_kind(kind), size, seed,
-                                                      lights_reach, point_lights, light_groups);
+                                                      lights_reach, lighting, light_groups);
     std::ofstream out(out_path);
     if (!out) throw rad::Error(fmt::format("cannot write {}", out_path));
     rad::write_description(scene, out);

@@ -10,6 +10,7 @@
 
 #include "scene/ies_reader.h"
 #include "scene_builder.h"
+#include "scenegen/scenegen.h"
 #include "solver/solver.h"
 #include "visibility/backend.h"
 
@@ -271,6 +272,26 @@ TEST(Lights, AFirstShotInAClosedRoomDepositsThePowerTheLightEmits) {
   const double power = 4.0 * std::numbers::pi * 80.0;
   EXPECT_NEAR(deposited, power, 5e-3 * power);
   EXPECT_NEAR(s.energy.light_power[0], 4.0 * std::numbers::pi * 80.0, 1e-3 * power);
+}
+
+// rad-gen building --downlights: each room's light is its ceiling panel's far field, as bright
+// on its axis and of the same power (tools/bench_lights compares their solves).
+TEST(Lights, TheBuildingsDownlightIsItsPanelsFarFieldAndPower) {
+  RoomLighting downlights{RoomLighting::Kind::Downlight, nullptr};
+  downlights.downlight =
+      std::make_shared<const Photometry>(parse_ies(downlight_ies(), "downlight.ies"));
+  const Photometry& table = *downlights.downlight;
+  EXPECT_NEAR(table.candela_at(0.0f, 0.0f), 8.0 / std::numbers::pi, 1e-5);
+  EXPECT_NEAR(table.candela_at(60.0f, 123.0f), 4.0 / std::numbers::pi, 1e-5);
+  EXPECT_EQ(table.candela_at(120.0f, 0.0f), 0.0f);
+  const Hierarchy lit =
+      build_hierarchy(generate_scene(SceneKind::Building, 3200, 1, -1, downlights));
+  const Hierarchy panels = build_hierarchy(generate_scene(SceneKind::Building, 3200, 1));
+  ASSERT_EQ(lit.lights.size(), 2u);
+  EXPECT_TRUE(panels.lights.empty());
+  const SolverState a = make_solver_state(lit, SolverOptions{});
+  const SolverState b = make_solver_state(panels, SolverOptions{});
+  EXPECT_NEAR(a.energy.emitted_energy, b.energy.emitted_energy, 1e-3 * b.energy.emitted_energy);
 }
 
 TEST(Lights, EveryBackendGivesTheSameBitsOnALitScene) {

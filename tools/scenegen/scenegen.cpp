@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <numbers>
 #include <ostream>
@@ -412,7 +413,7 @@ SceneDescription make_teapot_in_stadium(int stacks) {
 }
 
 SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess, uint64_t seed,
-                               int lights_reach, bool point_lights, int light_groups) {
+                               int lights_reach, const RoomLighting& lighting, int light_groups) {
   nx = std::max(nx, 1), nz = std::max(nz, 1);
   const int t = std::max(wall_tess, 1), f = std::max(furniture_tess, 1);
   Rng rng(seed);
@@ -450,11 +451,21 @@ SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess
       std::vector<int32_t> room;
       std::string name = fmt::format("room{}_{}", i, k);
       room.push_back(b.pure(name + ".shell", grey(0.7f), std::move(shell)));
-      if (point_lights) {
+      if (lighting.kind == RoomLighting::Kind::Point) {
         Light l;
         l.kind = LightKind::Point;
         l.position = o + Vec3(2.5f, h - 0.3f, 2.5f);
         l.intensity = 8.0f / std::numbers::pi_v<float>;
+        room.push_back(b.light(name + ".light", l));
+      } else if (lighting.kind == RoomLighting::Kind::Downlight) {
+        assert(lighting.downlight);
+        Light l;
+        l.kind = LightKind::Point;
+        l.position = o + Vec3(2.5f, h - 0.01f, 2.5f);
+        l.direction = -Y;
+        l.photometric_up = X;
+        l.intensity = 1.0f;
+        l.photometry = lighting.downlight;
         room.push_back(b.light(name + ".light", l));
       } else {
         Tris lamp;
@@ -638,8 +649,25 @@ SceneDescription make_furnished_room(int q, uint64_t seed) {
   return b.take();
 }
 
+std::string downlight_ies() {
+  std::string gammas, candela;
+  for (int g = 0; g <= 90; ++g) {
+    gammas += fmt::format("{}{}", g ? " " : "", g);
+    const double c = 8.0 / std::numbers::pi * std::cos(double(g) * std::numbers::pi / 180.0);
+    candela += fmt::format("{}{:.6f}", g ? " " : "", g == 90 ? 0.0 : c);
+  }
+  return "IESNA:LM-63-2002\n"
+         "[TEST] rad-gen building --downlights\n"
+         "[LUMINAIRE] the far field of a 1 m2 Lambertian panel of exitance 8: (8/pi) cos(gamma) "
+         "cd\n"
+         "TILT=NONE\n"
+         "1 -1 1 91 1 1 2 0 0 0\n"
+         "1 1 0\n" +
+         gammas + "\n0\n" + candela + "\n";
+}
+
 SceneDescription generate_scene(SceneKind kind, uint64_t triangles, uint64_t seed, int lights_reach,
-                                bool point_lights, int light_groups) {
+                                const RoomLighting& lighting, int light_groups) {
   double n = double(std::max<uint64_t>(triangles, 1));
   switch (kind) {
     case SceneKind::CornellBox:
@@ -658,7 +686,7 @@ SceneDescription generate_scene(SceneKind kind, uint64_t triangles, uint64_t see
       int rooms = std::max(1, int(std::lround(n / 1600.0)));
       int nx = std::max(1, int(std::lround(std::sqrt(double(rooms)))));
       return make_building(nx, std::max(1, (rooms + nx - 1) / nx), 4, 2, seed, lights_reach,
-                           point_lights, light_groups);
+                           lighting, light_groups);
     }
     case SceneKind::FurnishedRoom: {
       // The triangle count grows about as q^2: counted at q = 4, then scaled.

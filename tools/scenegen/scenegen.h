@@ -3,10 +3,13 @@
 
 #include <cstdint>
 #include <iosfwd>
+#include <memory>
+#include <string>
 #include <string_view>
 
 #include "scene/description.h"
 #include "scene/description_writer.h"
+#include "scene/photometry.h"
 
 namespace rad {
 
@@ -21,6 +24,20 @@ enum class SceneKind : uint8_t {
 };
 
 const char* to_string(SceneKind kind);
+
+/// How a building's rooms are lit: each by a 1 m² ceiling panel of exitance 8 facing down; by a
+/// point light 0.3 m under the ceiling of the panel's on-axis intensity, 8 / pi cd every way
+/// (four times the panel's power); or by a downlight where the panel's centre is, whose IES
+/// distribution (downlight_ies) is the panel's far field, (8 / pi) cos(gamma) cd downward and
+/// none upward: the panel's power, as a light.
+struct RoomLighting {
+  enum class Kind : uint8_t { Panel, Point, Downlight } kind = Kind::Panel;
+  std::shared_ptr<const Photometry> downlight;  // Downlight: parse_ies(downlight_ies(), path)
+};
+
+/// The LM-63-2002 text of RoomLighting's downlight: type C, rotationally symmetric, absolute
+/// photometry, candela (8 / pi) cos(gamma) at every degree from 0 to 90.
+std::string downlight_ies();
 /// "cornell" | "soup" | "nested" | "stadium" | "building" | "room"; throws rad::Error otherwise.
 SceneKind parse_scene_kind(std::string_view name);
 
@@ -28,10 +45,10 @@ SceneKind parse_scene_kind(std::string_view name);
 /// a few dozen), the same for the same (kind, triangles, seed) on every platform. A building's
 /// rooms get Lights lists (design §8) naming the rooms within `lights_reach` rooms (Chebyshev
 /// distance) when it is 0 or more.
-/// With `point_lights` a building's rooms are lit by point lights instead of emitting panels;
-/// with `light_groups` > 0 they are dealt round that many light groups.
+/// `lighting` says how a building's rooms are lit; with `light_groups` > 0 they are dealt round
+/// that many light groups.
 SceneDescription generate_scene(SceneKind kind, uint64_t triangles, uint64_t seed,
-                                int lights_reach = -1, bool point_lights = false,
+                                int lights_reach = -1, const RoomLighting& lighting = {},
                                 int light_groups = 0);
 
 /// Cornell box in [0, 1]³ (y up, open front at z = 1): floor, ceiling, back, red left and green
@@ -55,12 +72,11 @@ SceneDescription make_teapot_in_stadium(int stacks);
 /// quads per piece), a light, and furniture Composites (a table, chairs, a cabinet) made of boxes
 /// with furniture_tess² quads per face. About 1600 triangles per room with the defaults (wall_tess
 /// 4, furniture_tess 2). With lights_reach >= 0 each room lights only itself and the rooms
-/// within that many rooms along each axis (a Lights list). With `point_lights` each room's light
-/// is a point light 0.3 m under the ceiling, of the on-axis intensity of the 1 m² panel of
-/// exitance 8 it replaces (8 / pi cd), not the panel. With `light_groups` > 0 the rooms are
-/// dealt round that many light groups, g0, g1, ... (room i of the building in g(i mod n)).
+/// within that many rooms along each axis (a Lights list). `lighting` says what lights each room
+/// (RoomLighting). With `light_groups` > 0 the rooms are dealt round that many light groups, g0,
+/// g1, ... (room i of the building in g(i mod n)).
 SceneDescription make_building(int nx, int nz, int wall_tess, int furniture_tess, uint64_t seed,
-                               int lights_reach = -1, bool point_lights = false,
+                               int lights_reach = -1, const RoomLighting& lighting = {},
                                int light_groups = 0);
 
 /// A 5 × 2.8 × 4 m room furnished as real models are made (design §10's curved meshes): a sofa
