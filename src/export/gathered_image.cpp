@@ -83,6 +83,11 @@ Image render_gathered_image(const SolverState& s, const VisibilityBackend& vis,
   const DirectLight direct = make_direct_light(s, kEndSets);
   const PolygonLocator locator(tris, h.bounds);
   const GatherSettings base = gather_settings(s);
+  // A pixel's direct light averages sets of ray ends where it is in a penumbra (below), in place
+  // of the solver's penumbra rounds, which the vertices' direct light keeps: their bounced light
+  // is H less what the solver gathered directly, with the same rays.
+  GatherSettings at_pixels = base;
+  at_pixels.penumbra_rays = 0;
   // Camera segments reach past the far side of the scene from wherever the eye is.
   const float reach =
       2.0f * (glm::length(camera.eye - h.bounds.center()) + h.bounds.diagonal()) + 1e-30f;
@@ -206,7 +211,7 @@ Image render_gathered_image(const SolverState& s, const VisibilityBackend& vis,
             const Vec3 indirect = interpolate_at(
                                       m, [&](uint32_t v) { return bounced[p][v]; }, bary) +
                                   o.ambient;
-            const GatherSettings g = receiver_settings(base, s, p);
+            const GatherSettings g = receiver_settings(at_pixels, s, p);
             const uint32_t set = set_of(pixel, k);
             Vec3 d = direct_gain(s, direct, p, hit.x, tris.normal[p], set, vis, g, sc.direct);
             // In a penumbra (some light, less than unshadowed) the visibility is read through

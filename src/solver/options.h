@@ -74,13 +74,11 @@ struct SolverOptions {
   /// power from a hash of the vertex, and the sample's visibility is the mean. Every vertex sees
   /// the same points of a source through its first rays, so a penumbra would come in steps of
   /// one sample; the vertices that see all of a source or none of it pay nothing more but the
-  /// corners' rays. Only for the shots of kPenumbraSampleShare. 0: off. 8: the umbra scene
-  /// (scenes/umbra.des) at 0.82% of mean error against its reference (1.01% with 0), for 2%
-  /// more shadow rays in the Cornell box (docs/solver.md).
-  // Off by default: the final render separates each vertex's direct light by gathering it again
-  // with the shots' own ray ends (solver/direct_light.h), which extra rounds make inexact
-  // (tools/bench --pictures: 0.295% -> 0.326% on the Cornell box, 0.325% -> 0.611% on the
-  // umbra scene).
+  /// corners' rays. Only for the shots of kPenumbraSampleShare. 0: off (a penumbra in steps).
+  /// The final render's vertices gather their direct light again with the same rounds
+  /// (solver/direct_light.h), so their bounced light stays exact (docs/solver.md).
+  // Off by default: on the 1M building (tools/bench_lights, panels) 8 rounds cast 16% more
+  // shadow rays; scenes/umbra.des goes from 1.01% to 0.77% of mean error with 8.
   int penumbra_rays = 0;
   /// Penumbra rays go to the shots whose mean sample carries at least this fraction of the
   /// emitted energy: a lamp's first shot (its 16 samples step by a sixteenth of its light), not

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <numeric>
 
+#include "core/planar_geometry.h"
 #include "mesh/sample_points.h"
 #include "solver/solver_state.h"
 #include "visibility/segment.h"
@@ -206,8 +207,11 @@ ShotSource make_shot_source(const SolverState& s, int32_t c) {
 }
 
 ShotSource make_emission_source(const SolverState& s, int32_t c) {
-  return make_cluster_source(s, c,
-                             [&](uint32_t t, uint32_t v) { return s.solution.emission(t, v); });
+  ShotSource src =
+      make_cluster_source(s, c, [&](uint32_t t, uint32_t v) { return s.solution.emission(t, v); });
+  // As its first shot was: a major one, so its direct light gets the same penumbra rounds.
+  src.major = true;
+  return src;
 }
 
 namespace {
@@ -298,7 +302,18 @@ void draw_ray_ends(const ShotSource& src, uint64_t key, float offset, std::vecto
         acc += w;
         if (acc >= draw) break;
       }
-      const Vec3 end = off_surface(f.point(pick), f.normal(pick), offset);
+      // Anywhere in the fine point's cell, taken as the disc of its area in its plane: rays
+      // that end on the fine points alone see a source's visibility in steps of a fine point
+      // however many of them are drawn, the steps a penumbra would show.
+      const Vec3 normal = f.normal(pick);
+      DVec3 u, w;
+      plane_frame(DVec3(normal), u, w);
+      const uint64_t bits = splitmix64(key * 0x9e3779b97f4a7c15ull + g);
+      const double radius = std::sqrt(double(f.area[pick]) / std::numbers::pi *
+                                      ((double(bits >> 40) + 0.5) * 0x1p-24));
+      const double angle = 2.0 * std::numbers::pi * ((double(bits & 0xFFFFFF) + 0.5) * 0x1p-24);
+      const Vec3 at = f.point(pick) + Vec3((u * std::cos(angle) + w * std::sin(angle)) * radius);
+      const Vec3 end = off_surface(at, normal, offset);
       out[g] = end.x, out[n + g] = end.y, out[2 * n + g] = end.z;
     }
     group = last;
