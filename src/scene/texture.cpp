@@ -143,9 +143,10 @@ bool jpeg_tables_fit(const unsigned char* b, size_t n) {
     const size_t length = size_t(b[i + 2]) << 8 | b[i + 3];
     if (m == 0xC4) {
       const size_t end = std::min(n, i + 2 + length);
-      for (size_t at = i + 4; at + 17 <= end;) {
+      // A table cut short by the end of the file: stb reads the counts that are there.
+      for (size_t at = i + 4; at < end;) {
         size_t codes = 0;
-        for (size_t k = 1; k <= 16; ++k) codes += b[at + k];
+        for (size_t k = 1; k <= 16 && at + k < n; ++k) codes += b[at + k];
         if (codes > 256) return false;
         at += 17 + codes;
       }
