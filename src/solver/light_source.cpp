@@ -27,8 +27,9 @@ void frame(const Vec3& a, Vec3& e1, Vec3& e2) {
 }  // namespace
 
 std::vector<Light> shooting_lights(const std::vector<Light>& lights) {
-  std::vector<Light> at_unit = lights;
-  for (Light& l : at_unit) l.intensity = light_unit(l);
+  std::vector<Light> at_unit;
+  at_unit.reserve(lights.size());
+  for (const Light& l : lights) at_unit.push_back(shooting_light(l));
   return at_unit;
 }
 

@@ -18,7 +18,13 @@ inline constexpr size_t kSunRays = 16;
 /// an edit can still turn that one on.
 inline float light_unit(const Light& l) { return l.intensity > 0.0f ? l.intensity : 1.0f; }
 
-/// The scene's lights as they shoot: each with its light_unit intensity.
+/// A light of the scene as it shoots: with its light_unit intensity.
+inline Light shooting_light(Light l) {
+  l.intensity = light_unit(l);
+  return l;
+}
+
+/// The scene's lights as they shoot (shooting_light).
 std::vector<Light> shooting_lights(const std::vector<Light>& lights);
 
 /// Light `index` of `lights` (shooting_lights) frozen as the source of a shot that shoots `colour`

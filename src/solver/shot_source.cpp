@@ -209,9 +209,15 @@ ShotSource make_shot_source(const SolverState& s, int32_t c) {
 ShotSource make_emission_source(const SolverState& s, int32_t c) {
   ShotSource src =
       make_cluster_source(s, c, [&](uint32_t t, uint32_t v) { return s.solution.emission(t, v); });
-  // As its first shot was: a major one, so its direct light gets the same penumbra rounds.
-  src.major = true;
+  // Major as its first shot was, so its direct light gets the same penumbra rounds.
+  src.major =
+      is_major_shot(s, double(src.area) * std::abs(double(mean_component(src.mean_unshot))));
   return src;
+}
+
+bool is_major_shot(const SolverState& s, double energy) {
+  return s.options.major_shot_fraction > 0.0 &&
+         energy >= s.options.major_shot_fraction * s.energy.reference_energy;
 }
 
 namespace {

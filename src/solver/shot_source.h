@@ -157,6 +157,10 @@ int sample_grid_for(const SolverState& s, float extent);
 /// stratum's point nearest the centroid of its unshot power, which lies on the surface).
 ShotSource make_shot_source(const SolverState& s, int32_t c);
 
+/// Whether a shot of `energy` (area x mean-channel radiosity, summed) is a major one: at least
+/// SolverOptions::major_shot_fraction of the reference energy.
+bool is_major_shot(const SolverState& s, double energy);
+
 /// Cluster c frozen the same way as the source of its own emission E (its textures' included)
 /// rather than its unshot radiosity: the direct light it gives (direct_light.h).
 ShotSource make_emission_source(const SolverState& s, int32_t c);

@@ -172,8 +172,7 @@ ShotSource freeze_source(SolverState& s, size_t c, double energy, double& shot) 
                       {clusters.polygons.data() + clusters.first[c], left.size()}, left);
   for (const UnshotEnergy& e : left) shot -= e.sum;
 
-  src.major = s.options.major_shot_fraction > 0.0 &&
-              energy >= s.options.major_shot_fraction * s.energy.reference_energy;
+  src.major = is_major_shot(s, energy);
   // A major shot lights every receiver it may: its part is gathered again at new vertices and
   // holds the sharp shadows.
   if (!src.major)

@@ -75,14 +75,12 @@ EnergyBalance start_from_emission(Solution& sol) {
   // The lights shoot first (solver.cpp), their power counted with the surfaces' emission. What
   // a light shoots is in units of its shots' intensity (light_source.h: light_unit): its
   // setting over that.
-  const std::vector<Light> shooting = shooting_lights(h.lights);
+  // (At the scene's own intensity the ratio is exactly 1.)
   for (size_t i = 0; i < h.lights.size(); ++i) {
-    const Light& l = h.lights[i];
+    const Light shooting = shooting_light(h.lights[i]);
     const LightSetting& now = sol.lights[i];
-    energy.light_unshot.push_back(now.intensity == l.intensity && l.intensity > 0.0f
-                                      ? now.colour
-                                      : now.colour * (now.intensity / light_unit(l)));
-    energy.light_power.push_back(light_power(shooting[i], h.bounds));
+    energy.light_unshot.push_back(now.colour * (now.intensity / shooting.intensity));
+    energy.light_power.push_back(light_power(shooting, h.bounds));
   }
   energy.emitted_energy += energy.light_unshot_energy();
   energy.reference_energy = energy.emitted_energy;

@@ -183,6 +183,32 @@ TEST(GatheredImage, WhereNothingIsSeenThePixelsShowTheBackgroundOrAreTransparent
   EXPECT_GT(partial, 0u);
 }
 
+// The vertices' bounced light is H less their direct light gathered again with the solver's own
+// rays, penumbra rounds included: with or without them the picture is the same, the rounds
+// changing only what the vertices hold, not what a pixel shows of the direct light.
+TEST(GatheredImage, PenumbraRaysLeaveThePictureAsItIs) {
+  const Hierarchy h = build_hierarchy(umbra_scene());
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  GatheredImageOptions o;
+  o.width = o.height = 48;
+  const Camera camera{{0.0f, 6.0f, 0.01f}, {0.0f, 0.0f, 0.0f}, {0, 1, 0}, 40.0f};
+  std::vector<Image> images;
+  for (const int rounds : {0, 8}) {
+    SolverOptions options;
+    options.penumbra_rays = rounds;
+    SolverState s = make_solver_state(h, options);
+    solve(s, *vis);
+    images.push_back(render_gathered_image(s, *vis, camera, o));
+  }
+  double diff = 0.0, sum = 0.0;
+  for (size_t i = 0; i < images[0].pixels.size(); ++i) {
+    diff += double(max_component(glm::abs(images[0].pixels[i] - images[1].pixels[i])));
+    sum += double(max_component(images[0].pixels[i]));
+  }
+  ASSERT_GT(sum, 0.0);
+  EXPECT_LT(diff / sum, 1e-3) << "the pictures with 0 and 8 penumbra rounds differ";
+}
+
 std::shared_ptr<TextureImage> two_colour_image() {
   // 2 x 1 texels: red on the left half, blue on the right.
   const unsigned char p[8] = {200, 40, 40, 255, 40, 40, 200, 255};
