@@ -115,8 +115,10 @@ TEST(Texture, WhatIsNotAnImageIsNoTexture) {
   EXPECT_FALSE(read_texture_file("/nonexistent/rad/texture.png"));
 }
 
-// A PNG chunk whose length says more than the file holds is refused before stb_image sizes its
-// buffer by it (tests/scene/fuzz_regressions/gltf/png_chunk_longer_than_its_file.gltf).
+// A PNG chunk whose length says more than the file holds is no texture. (stb_image refuses it
+// too, but only after sizing its buffer by that length; that rad checks first is what the fuzz
+// run's allocation limit holds, from tests/scene/fuzz_regressions/gltf/
+// png_chunk_longer_than_its_file.gltf, which tools/fuzz seeds.)
 TEST(Texture, APngChunkLongerThanItsFileIsNoTexture) {
   std::string bytes = four_by_two();
   const size_t idat = bytes.find("IDAT");

@@ -231,7 +231,11 @@ TEST(LightEdits, TheSceneListsItsLightsAndTheirEditsContinueTheSolve) {
   sun.kind = LightKind::Directional;
   sun.direction = Vec3(0.0f, 0.0f, -1.0f);
   sun.intensity = 0.0f;
-  h.lights = {bulb, sun};
+  // Where the bulb is, off in the scene: turned on, it lights the box as the bulb did.
+  Light spare = bulb;
+  spare.name = "spare";
+  spare.intensity = 0.0f;
+  h.lights = {bulb, sun, spare};
   const auto vis = make_visibility_backend(BackendKind::Embree, h);
   SessionOptions o;
   o.solver = testing::serve_options();
@@ -275,7 +279,7 @@ TEST(LightEdits, TheSceneListsItsLightsAndTheirEditsContinueTheSolve) {
   };
 
   const json scene = json::parse(client.Get("/api/scene")->body);
-  ASSERT_EQ(scene["lights"].size(), 2u);
+  ASSERT_EQ(scene["lights"].size(), 3u);
   EXPECT_EQ(scene["lights"][0]["name"], "bulb");
   EXPECT_EQ(scene["lights"][0]["kind"], "point");
   EXPECT_EQ(scene["lights"][0]["unit"], "cd");
@@ -312,19 +316,22 @@ TEST(LightEdits, TheSceneListsItsLightsAndTheirEditsContinueTheSolve) {
   EXPECT_EQ(st["lights"][0]["colour"], json::array({1.0, 0.5, 0.25})) << "kept for switching on";
   EXPECT_LT(std::abs(total_radiosity().x), 0.01 * white.x);
 
-  // The sun the scene leaves off (intensity 0) turned on: it lights the box.
+  // The spare bulb the scene leaves off (intensity 0) turned on at the bulb's 4 cd: the bulb's
+  // light again.
   shots = st["shots"].get<int64_t>();
-  r = post({{"light", 1}, {"intensity", 3}});
+  r = post({{"light", 2}, {"intensity", 4}});
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 202) << r->body;
   st = converged_after(shots);
   ASSERT_EQ(st["status"], "converged");
-  EXPECT_EQ(st["lights"][1]["intensity"].get<double>(), 3.0);
-  EXPECT_GT(total_radiosity().x, 0.0);
+  EXPECT_EQ(st["lights"][2]["intensity"].get<double>(), 4.0);
+  const DVec3 spare_lit = total_radiosity();
+  EXPECT_NEAR(spare_lit.x / white.x, 1.0, 0.02);
+  EXPECT_NEAR(spare_lit.z / white.z, 1.0, 0.02);
 
   // Bad edits: 400 with a message, nothing queued.
   for (const json& bad :
-       {json{{"light", 1}, {"intensity", -3}}, json{{"light", 2}, {"intensity", 1}},
+       {json{{"light", 1}, {"intensity", -3}}, json{{"light", 3}, {"intensity", 1}},
         json{{"light", 0}, {"intensity", -1}}, json{{"light", 0}},
         json{{"light", 0}, {"colour", {2, 0, 0}}}, json{{"light", 0}, {"power", 3}}}) {
     r = post(bad);

@@ -268,6 +268,20 @@ double mean_vertex_difference(const SolverState& a, const SolverState& b, size_t
   return sum > 0.0 ? diff / sum : 1.0;
 }
 
+// That `edited`, converged after its edits, is within 1% per vertex of a fresh solve of the room
+// lit by `lights` (`what` names the case in the printed figure).
+void expect_fresh_solve_of(const SolverState& edited, std::vector<Light> lights, const char* what) {
+  const Hierarchy fresh_h = lit_room(std::move(lights));
+  const auto fresh_vis = make_visibility_backend(BackendKind::Embree, fresh_h);
+  SolverState fresh = make_solver_state(fresh_h, options());
+  solve(fresh, *fresh_vis);
+  size_t compared = 0;
+  const double d = mean_vertex_difference(edited, fresh, &compared);
+  std::printf("%s: mean vertex difference %.4f%% over %zu vertices\n", what, 100 * d, compared);
+  EXPECT_GT(compared, 100u) << what;
+  EXPECT_LE(d, 0.01) << what;
+}
+
 TEST(Edits, ALightsIntensityAndColourContinueToAFreshSolveOfTheEditedScene) {
   const Hierarchy h = lit_room({kLampA, kLampB});
   const auto vis = make_visibility_backend(BackendKind::Embree, h);
@@ -284,15 +298,7 @@ TEST(Edits, ALightsIntensityAndColourContinueToAFreshSolveOfTheEditedScene) {
   Light a2 = kLampA;
   a2.colour = orange;
   a2.intensity = 2.0f * kLampA.intensity;
-  const Hierarchy fresh_h = lit_room({a2, kLampB});
-  const auto fresh_vis = make_visibility_backend(BackendKind::Embree, fresh_h);
-  SolverState fresh = make_solver_state(fresh_h, options());
-  solve(fresh, *fresh_vis);
-  size_t compared = 0;
-  const double d = mean_vertex_difference(edited, fresh, &compared);
-  std::printf("light edit: mean vertex difference %.4f%% over %zu vertices\n", 100 * d, compared);
-  EXPECT_GT(compared, 100u);
-  EXPECT_LE(d, 0.01);
+  expect_fresh_solve_of(edited, {a2, kLampB}, "light edit");
 }
 
 TEST(Edits, SwitchingALightOffLeavesOnlyTheOtherLightsLight) {
@@ -303,22 +309,12 @@ TEST(Edits, SwitchingALightOffLeavesOnlyTheOtherLightsLight) {
   set_light(edited.solution, edited.energy, 0, kLampA.colour, 0.0f);
   EXPECT_EQ(solve(edited, *vis), StopReason::Converged);
 
-  const Hierarchy only_b = lit_room({kLampB});
-  const auto fresh_vis = make_visibility_backend(BackendKind::Embree, only_b);
-  SolverState fresh = make_solver_state(only_b, options());
-  solve(fresh, *fresh_vis);
-  size_t compared = 0;
-  const double d = mean_vertex_difference(edited, fresh, &compared);
-  std::printf("light off: mean vertex difference %.4f%% over %zu vertices\n", 100 * d, compared);
-  EXPECT_GT(compared, 100u);
-  EXPECT_LE(d, 0.01);
+  expect_fresh_solve_of(edited, {kLampB}, "light off");
 
   // And on again: back to the scene's own solution.
   set_light(edited.solution, edited.energy, 0, kLampA.colour, kLampA.intensity);
   EXPECT_EQ(solve(edited, *vis), StopReason::Converged);
-  SolverState both = make_solver_state(h, options());
-  solve(both, *vis);
-  EXPECT_LE(mean_vertex_difference(edited, both, &compared), 0.01);
+  expect_fresh_solve_of(edited, {kLampA, kLampB}, "light on again");
 }
 
 TEST(Edits, ALightEditBeforeTheFirstShotIsTheEditedScenesOwnStart) {
@@ -344,16 +340,7 @@ TEST(Edits, ALightTheSceneLeavesOffTurnsOnToAFreshSolveWithItOn) {
   set_light(edited.solution, edited.energy, 1, kLampB.colour, kLampB.intensity);
   EXPECT_EQ(edited.energy.light_unshot[1], kLampB.colour * kLampB.intensity);
   EXPECT_EQ(solve(edited, *vis), StopReason::Converged);
-
-  const Hierarchy both = lit_room({kLampA, kLampB});
-  const auto fresh_vis = make_visibility_backend(BackendKind::Embree, both);
-  SolverState fresh = make_solver_state(both, options());
-  solve(fresh, *fresh_vis);
-  size_t compared = 0;
-  const double d = mean_vertex_difference(edited, fresh, &compared);
-  std::printf("light on: mean vertex difference %.4f%% over %zu vertices\n", 100 * d, compared);
-  EXPECT_GT(compared, 100u);
-  EXPECT_LE(d, 0.01);
+  expect_fresh_solve_of(edited, {kLampA, kLampB}, "light left off, turned on");
 }
 
 TEST(Edits, RejectsAMissingLightOrABadValue) {
