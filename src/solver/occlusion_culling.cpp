@@ -110,6 +110,7 @@ struct ShotOccluders {
   std::vector<ShotOccluder> chosen;
   Aabb source;  // where its rays may end, before the margin
   float margin = 0.0f;
+  float source_margin = 0.0f;  // how far the source's ray ends may lie outside `source`
 
   uint32_t every() const {
     return chosen.size() >= kOccluders ? ~0u : (uint32_t(1) << chosen.size()) - 1;
@@ -118,9 +119,9 @@ struct ShotOccluders {
   void add(const Occluder& o, float side) {
     ShotOccluder x;
     x.occluder = &o, x.side = side;
-    x.su = corner_coordinates(source, margin, o.origin, o.u);
-    x.sw = corner_coordinates(source, margin, o.origin, o.w);
-    x.sd = corner_coordinates(source, margin, o.origin, o.normal);
+    x.su = corner_coordinates(source, source_margin, o.origin, o.u);
+    x.sw = corner_coordinates(source, source_margin, o.origin, o.w);
+    x.sd = corner_coordinates(source, source_margin, o.origin, o.normal);
     chosen.push_back(x);
   }
 
@@ -153,7 +154,8 @@ OcclusionCulling make_occlusion_culling(const Hierarchy& h, float shadow_offset)
   OcclusionCulling c;
   // Shadow rays start up to the shadow offset off a receiving point (moved a 1e-4 fraction of
   // the way to its polygon's centroid: inside the polygon) and end up to it off the source.
-  c.margin = 4.0 * double(shadow_offset) + 1e-6 * double(h.bounds.magnitude());
+  c.rounding = 1e-6 * double(h.bounds.magnitude());
+  c.margin = 4.0 * double(shadow_offset) + c.rounding;
   c.occluders = fuse_occluders(h, c.margin);
   if (c.occluders.empty()) return c;
   for (const Occluder& o : c.occluders) c.occluder_boxes.push_back(o.box);
@@ -192,6 +194,11 @@ ShotOccluders choose_occluders(const OcclusionCulling& c, const ShotSource& src)
     if (fine.area[i] > 0.0f) ends.extend(fine.point(i));
   if (ends.empty()) ends = src.box;
   so.source = ends;
+  // A point or spot light's rays end at its position, not off a surface: only rounding moves
+  // them. Grown by the whole margin, a lamp hung within it of a ceiling would see past the top
+  // of every wall (their crossings would come within the margin of the walls' top edges).
+  const bool at_point = src.light >= 0 && src.emitter->kind != LightKind::Directional;
+  so.source_margin = float(at_point ? c.rounding : c.margin);
   const DVec3 centre(ends.center()), half(ends.extent() * 0.5f);
   // Beyond the roulette's reach at any height and facing an occluder hides only what the shot
   // skips anyway: the points it reaches lie nearer, and so do the segments to them.
@@ -202,7 +209,7 @@ ShotOccluders choose_occluders(const OcclusionCulling& c, const ShotSource& src)
   tbb::parallel_for(size_t(0), near.size(), [&](size_t i) {
     const Occluder& o = c.occluders[near[i]];
     const double d = glm::dot(centre - o.origin, o.normal);
-    if (std::abs(d) <= glm::dot(half, glm::abs(o.normal)) + 2.0 * c.margin) return;
+    if (std::abs(d) <= glm::dot(half, glm::abs(o.normal)) + so.source_margin + c.margin) return;
     if (!(o.hides_behind & (d > 0.0 ? 1 : 2))) return;
     double sum = 0.0;
     for (size_t q = 0; q < o.part_area.size(); ++q) {

@@ -29,6 +29,8 @@ struct OcclusionCulling {
   /// How far every point a shadow ray may start or end lies from its polygon (the shadow offset
   /// and the inset, with room for rounding): boxes grow by it and crossings keep clear of edges.
   double margin = 0.0;
+  /// What rounding may move a point by anywhere in the scene (part of the margin).
+  double rounding = 0.0;
   bool empty() const { return occluders.empty(); }
 };
 

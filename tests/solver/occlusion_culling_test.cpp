@@ -9,6 +9,7 @@
 #include "hierarchy/hierarchy.h"
 #include "scene_builder.h"
 #include "scenegen/scenegen.h"
+#include "solver/light_source.h"
 #include "solver/shoot.h"
 #include "solver/shot_source.h"
 #include "visibility/segment.h"
@@ -100,6 +101,52 @@ TEST(OcclusionCulling, ALightSeesPartOfTheRoomsBeyondItsDoorsAndLittleOfTheRoomA
   }
   EXPECT_LT(shown[3], all[3] / 2);
   EXPECT_GT(shown[0], all[0] / 2);
+}
+
+TEST(OcclusionCulling, ALampHungWithinTheMarginOfTheCeilingIsHiddenByTheWallsToTheirTops) {
+  // Two closed rooms 15 m apart, a point light in the first hung 1.5 culling margins under its
+  // ceiling. Its rays end at the lamp itself, so the first room's wall hides the whole second
+  // room from it, up to the wall's top: were the lamp's end of the segments grown by the margin
+  // as a surface's is, their crossings would come within the margin of that top and the second
+  // room's triangles that reach its ceiling would stay (checked: all of them did).
+  SceneDescription d;
+  testing::add_closed_box(d, {0, 0, 0}, {5, 3, 5}, Vec3(0.5f), Vec3(0.0f));
+  testing::add_closed_box(d, {20, 0, 0}, {25, 3, 5}, Vec3(0.5f), Vec3(0.0f));
+  ObjectDescription lamp;
+  lamp.name = "lamp";
+  lamp.light = Light{};
+  lamp.light->kind = LightKind::Point;
+  lamp.light->position = Vec3(2.5f, 2.9f, 2.5f);
+  lamp.light->intensity = 1.0f;
+  d.roots.push_back(int32_t(d.objects.size()));
+  d.objects.push_back(std::move(lamp));
+  Hierarchy h = build_hierarchy(d);
+  ASSERT_EQ(h.lights.size(), 1u);
+  const double margin = make_solver_state(h, SolverOptions{}).scene.culling.margin;
+  h.lights[0].position.y = 3.0f - float(1.5 * margin);
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  const SolverState s = make_solver_state(h, SolverOptions{});
+  const ShotSource src = make_light_source(h.lights, 0, Vec3(1.0f), h.bounds);
+  std::vector<uint32_t> unhidden;
+  unhidden_triangles(s.scene.culling, src, unhidden);
+  std::vector<uint8_t> kept(h.triangles.size(), 0);
+  for (uint32_t p : unhidden) kept[p] = 1;
+  size_t far_room = 0, far_shown = 0;
+  std::vector<Segment> segments;
+  for (size_t p = 0; p < h.triangles.size(); ++p) {
+    if (!may_receive(h, s.scene.clusters, p, src)) continue;
+    if (h.triangles.centroid(p).x > 10.0f) ++far_room, far_shown += kept[p];
+    if (kept[p]) continue;
+    for (const Vec3& x : points_on(h.triangles, p, s.scene.shadow_offset))
+      segments.push_back({x, h.lights[0].position - x});
+  }
+  EXPECT_GE(far_room, 8u);  // its floor, ceiling and three walls face the lamp
+  EXPECT_EQ(far_shown, 0u);
+  ASSERT_FALSE(segments.empty());
+  std::vector<uint8_t> blocked(segments.size(), 0);
+  VisibilityStats stats;
+  vis->occluded(segments, blocked, stats);
+  EXPECT_EQ(std::count(blocked.begin(), blocked.end(), uint8_t(0)), 0);
 }
 
 TEST(OcclusionCulling, ChangesNoGainWhenEveryGainGetsItsRays) {
