@@ -8,3 +8,8 @@ target_compile_definitions(solver_bench PRIVATE RAD_SOURCE_DIR="${PROJECT_SOURCE
 rad_add_bench(build_bench
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/build_bench.cpp
   LIBS rad_solver rad_scenegen TBB::tbb)
+
+rad_add_bench(model_pairs_bench
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/model_pairs_bench.cpp
+  LIBS rad_run rad_scenegen TBB::tbb)
+target_compile_definitions(model_pairs_bench PRIVATE RAD_SOURCE_DIR="${PROJECT_SOURCE_DIR}")

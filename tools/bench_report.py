@@ -167,6 +167,28 @@ def agreement(out):
           "beyond rounding distance")
 
 
+def model_pairs(out):
+    """bench/model_pairs_bench: each pair's two sides solved to convergence, their times and how
+    far apart their light is."""
+    pairs = load(os.path.join(out, "model_pairs.json"))
+    if not pairs:
+        return
+    rows = []
+    for name, b in pairs.items():
+        a_name, b_name = name.removeprefix("pair/").split("/")
+        rows.append([a_name, b_name, f"{b['difference_pct']:.3f}%",
+                     f"{b['seconds_a']:.2f} s", f"{b['seconds_b']:.2f} s",
+                     ratio(b["seconds_a"], b["seconds_b"]),
+                     f"{b['shots_a']:.0f} / {b['shots_b']:.0f}",
+                     f"{b['vertices_a']:,.0f} / {b['vertices_b']:,.0f}"])
+    print("\nThe same scene written two ways (bench/model_pairs_bench: defaults, converged, 2 "
+          "threads)")
+    print(table(rows, ["written as", "against", "difference", "time", "against", "÷", "shots",
+                       "vertices"], ["<", "<", ">", ">", ">", ">", ">", ">"]))
+    print("  target: difference ≤ 0.5% of the mean in comparable time (the light shown, binned "
+          "by place and facing)")
+
+
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else "out/bench"
     m = machine(os.path.join(out, "machine.txt"))
@@ -419,6 +441,7 @@ def main():
     print("  for scale: Blender 3.4 Cycles baking the box: 23.5 s for 3.9%, 172 s for 1.8%")
     tessellation(out)
     agreement(out)
+    model_pairs(out)
 
 
 if __name__ == "__main__":

@@ -48,28 +48,8 @@ TextureImage::Level halve(const TextureImage::Level& l) {
 
 std::shared_ptr<TextureImage> make_image(unsigned char* pixels, int w, int h, std::string name) {
   if (!pixels) return nullptr;
-  auto image = std::make_shared<TextureImage>();
-  image->name = std::move(name);
-  image->file_width = w, image->file_height = h;
-  float lut[256];
-  for (int i = 0; i < 256; ++i) lut[i] = srgb_to_linear(i / 255.0);
-  TextureImage::Level base;
-  base.width = w, base.height = h;
-  base.texels.resize(size_t(w) * size_t(h));
-  DVec3 sum(0.0);
-  for (size_t i = 0; i < base.texels.size(); ++i) {
-    const unsigned char* p = pixels + 4 * i;
-    const Vec4 t(lut[p[0]], lut[p[1]], lut[p[2]], float(p[3]) / 255.0f);
-    base.texels[i] = t;
-    image->has_alpha |= p[3] != 255;
-    sum += DVec3(t.x, t.y, t.z);
-  }
+  auto image = texture_from_pixels(pixels, w, h, std::move(name));
   stbi_image_free(pixels);
-  image->mean = Vec3(sum / double(base.texels.size()));
-  while (base.texels.size() > kMaxTextureTexels) base = halve(base);
-  image->levels.push_back(std::move(base));
-  while (image->levels.back().width > 1 || image->levels.back().height > 1)
-    image->levels.push_back(halve(image->levels.back()));
   return image;
 }
 
@@ -174,6 +154,32 @@ bool png_chunks_fit(const unsigned char* b, size_t n) {
 }
 
 }  // namespace
+
+std::shared_ptr<TextureImage> texture_from_pixels(const unsigned char* rgba, int w, int h,
+                                                  std::string name) {
+  auto image = std::make_shared<TextureImage>();
+  image->name = std::move(name);
+  image->file_width = w, image->file_height = h;
+  float lut[256];
+  for (int i = 0; i < 256; ++i) lut[i] = srgb_to_linear(i / 255.0);
+  TextureImage::Level base;
+  base.width = w, base.height = h;
+  base.texels.resize(size_t(w) * size_t(h));
+  DVec3 sum(0.0);
+  for (size_t i = 0; i < base.texels.size(); ++i) {
+    const unsigned char* p = rgba + 4 * i;
+    const Vec4 t(lut[p[0]], lut[p[1]], lut[p[2]], float(p[3]) / 255.0f);
+    base.texels[i] = t;
+    image->has_alpha |= p[3] != 255;
+    sum += DVec3(t.x, t.y, t.z);
+  }
+  image->mean = Vec3(sum / double(base.texels.size()));
+  while (base.texels.size() > kMaxTextureTexels) base = halve(base);
+  image->levels.push_back(std::move(base));
+  while (image->levels.back().width > 1 || image->levels.back().height > 1)
+    image->levels.push_back(halve(image->levels.back()));
+  return image;
+}
 
 std::shared_ptr<TextureImage> decode_texture(const unsigned char* bytes, size_t size,
                                              std::string name) {

@@ -73,6 +73,11 @@ bool opaque_at(const AlphaMask& m, Vec2 uv);
 /// 4 x 4 opaque_at tests spread over it.
 float opaque_fraction(const AlphaMask& m, Vec2 uv, float width);
 
+/// The texture of w x h pixels of 8-bit sRGB colour and linear alpha, row by row from v = 0:
+/// what decode_texture makes of an image file's pixels.
+std::shared_ptr<TextureImage> texture_from_pixels(const unsigned char* rgba, int w, int h,
+                                                  std::string name);
+
 /// Decodes an image file's bytes (whatever stb_image reads: PNG, JPEG, BMP, TGA, ...), or
 /// returns nullptr when they are not an image it decodes or hold more than 64 million pixels.
 std::shared_ptr<TextureImage> decode_texture(const unsigned char* bytes, size_t size,

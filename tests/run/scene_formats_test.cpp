@@ -11,6 +11,7 @@
 #include "export/scene_export.h"
 #include "hierarchy/auto_hierarchy.h"
 #include "scene/parser.h"
+#include "scenegen/model_pairs.h"
 #include "solver/solver.h"
 #include "visibility/backend.h"
 
@@ -18,29 +19,6 @@ namespace rad {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Every triangle its own vertices; a group and a material per Pure.
-void write_obj_soup(const Hierarchy& h, const fs::path& obj) {
-  std::ofstream out(obj), mtl(fs::path(obj).replace_extension(".mtl"));
-  out << "mtllib " << fs::path(obj).replace_extension(".mtl").filename().string() << "\n";
-  out.precision(9);
-  mtl.precision(9);
-  size_t v = 0;
-  for (size_t i = 0; i < h.objects.size(); ++i) {
-    const SceneObject& o = h.objects[i];
-    if (o.kind != ObjectKind::Pure) continue;
-    const Vec3 rho = o.material.reflectance, e = o.material.emission;
-    mtl << "newmtl m" << i << "\nKd " << rho.x << ' ' << rho.y << ' ' << rho.z << "\nKe " << e.x
-        << ' ' << e.y << ' ' << e.z << "\n";
-    out << "o pure" << i << "\nusemtl m" << i << "\n";
-    for (uint32_t t = o.first_triangle; t < o.first_triangle + o.triangle_count; ++t) {
-      for (const Vec3& p : h.triangles.corners[t])
-        out << "v " << p.x << ' ' << p.y << ' ' << p.z << "\n";
-      out << "f " << v + 1 << ' ' << v + 2 << ' ' << v + 3 << "\n";
-      v += 3;
-    }
-  }
-}
 
 // Radiosity integrated over each triangle of `h` solved as `s`, keyed by the triangle's
 // centroid rounded to a micrometre of the scene's millimetres.
@@ -77,7 +55,7 @@ TEST(SceneFormats, TheCornellBoxSolvesAlikeAsADescriptionAnObjSoupAndGltf) {
   fs::create_directories(dir);
   const std::string des = std::string(RAD_SOURCE_DIR) + "/scenes/cornell_box.des";
   const Hierarchy h = load_hierarchy(des, {}, std::nullopt);
-  write_obj_soup(h, dir / "box.obj");
+  write_obj_soup(h, (dir / "box.obj").string());
   const SceneDescription d = parse_scene_file(des);
   write_scene_file((dir / "box.gltf").string(), d, h);
 

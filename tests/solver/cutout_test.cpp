@@ -9,51 +9,7 @@
 namespace rad {
 namespace {
 
-using testing::add_quad;
-
-// A mask opaque on its left half (u < 0.5), clear on its right.
-AlphaMask half_mask() {
-  auto image = std::make_shared<TextureImage>();
-  image->name = "half";
-  image->has_alpha = true;
-  TextureImage::Level l;
-  l.width = l.height = 64;
-  for (int y = 0; y < 64; ++y) {
-    for (int x = 0; x < 64; ++x) l.texels.push_back(Vec4(1.0f, 1.0f, 1.0f, x < 32 ? 1.0f : 0.0f));
-  }
-  image->levels.push_back(l);
-  image->mean = Vec3(1.0f);
-  AlphaMask m;
-  m.texture.image = image;
-  m.texture.sampler.wrap_s = m.texture.sampler.wrap_t = TextureWrap::ClampToEdge;
-  return m;
-}
-
-// A 1 x 1 x 1 room lit by a ceiling panel, a leaf half-way up facing it: the square x, z in
-// [0.2, 0.8] cut out to its half x < 0.5, or that half as polygons.
-Hierarchy room(bool cut) {
-  SceneDescription d;
-  const Vec3 wall(0.6f), none(0.0f);
-  add_quad(d, "floor", {0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}, wall, none);
-  add_quad(d, "ceiling", {0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}, wall, none);
-  add_quad(d, "lamp", {0.4f, 0.999f, 0.4f}, {0.6f, 0.999f, 0.4f}, {0.6f, 0.999f, 0.6f},
-           {0.4f, 0.999f, 0.6f}, none, Vec3(20.0f));
-  add_quad(d, "x0", {0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}, wall, none);
-  add_quad(d, "x1", {1, 0, 0}, {1, 0, 1}, {1, 1, 1}, {1, 1, 0}, wall, none);
-  add_quad(d, "z0", {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, wall, none);
-  add_quad(d, "z1", {0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}, wall, none);
-  const float right = cut ? 0.8f : 0.5f;
-  add_quad(d, "leaf", {0.2f, 0.5f, 0.2f}, {0.2f, 0.5f, 0.8f}, {right, 0.5f, 0.8f},
-           {right, 0.5f, 0.2f}, Vec3(0.5f, 0.7f, 0.3f), none);
-  if (cut) {
-    ObjectDescription& leaf = d.objects.back();
-    leaf.cutout = half_mask();
-    auto uv = [](const Vec3& p) { return Vec2((p.x - 0.2f) / 0.6f, (p.z - 0.2f) / 0.6f); };
-    for (const auto& t : leaf.triangles)
-      leaf.triangle_uvs.push_back({uv(t[0]), uv(t[1]), uv(t[2])});
-  }
-  return build_hierarchy(d);
-}
+Hierarchy room(bool cut) { return build_hierarchy(cutout_room(cut)); }
 
 // Radiosity (or irradiance, `arriving`) integrated over the Pure `name`, in a 4 x 4 grid of
 // bins over x and z.

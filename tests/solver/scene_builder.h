@@ -5,6 +5,7 @@
 
 #include "hierarchy/hierarchy.h"
 #include "scene/description.h"
+#include "scenegen/model_pairs.h"
 #include "solver/solver.h"
 #include "solver/solver_state.h"
 
@@ -17,29 +18,8 @@ struct Solved {
   SolverState s;
 };
 
-/// Appends a Pure made of the quad a b c d (two triangles a b c, a c d; front by the right-hand
-/// rule), cut into k x k quads.
-inline void add_quad(SceneDescription& s, const std::string& name, Vec3 a, Vec3 b, Vec3 c, Vec3 d,
-                     Vec3 reflectance, Vec3 emission, int k = 1) {
-  ObjectDescription o;
-  o.name = name;
-  o.kind = ObjectKind::Pure;
-  o.material = {reflectance, emission};
-  auto at = [&](float u, float v) {
-    return a + (b - a) * u + (d - a) * v + (a - b + c - d) * (u * v);
-  };
-  for (int i = 0; i < k; ++i) {
-    for (int j = 0; j < k; ++j) {
-      const float u0 = float(i) / k, u1 = float(i + 1) / k, v0 = float(j) / k,
-                  v1 = float(j + 1) / k;
-      o.triangles.push_back({at(u0, v0), at(u1, v0), at(u1, v1)});
-      o.triangles.push_back({at(u0, v0), at(u1, v1), at(u0, v1)});
-      o.triangle_locs.resize(o.triangles.size());
-    }
-  }
-  s.roots.push_back(int32_t(s.objects.size()));
-  s.objects.push_back(std::move(o));
-}
+/// Appends a Pure made of a quad (model_pairs.h).
+using rad::add_quad;
 
 /// Axis-aligned box [lo, hi] with all six faces facing inwards, one Pure per face.
 inline void add_closed_box(SceneDescription& s, Vec3 lo, Vec3 hi, Vec3 rho, Vec3 e, int k = 1) {

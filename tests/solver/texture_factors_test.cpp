@@ -3,9 +3,6 @@
 #include "solver/texture_factors.h"
 
 #include <gtest/gtest.h>
-#define STB_IMAGE_WRITE_STATIC
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#include <stb/stb_image_write.h>
 
 #include <cmath>
 #include <utility>
@@ -17,90 +14,9 @@
 namespace rad {
 namespace {
 
-using testing::add_quad;
 using testing::solve_shots;
 
-constexpr int kSquares = 4, kTexels = 64;  // a 4 x 4 checker, 16 texels a square
-const unsigned char kLight[3] = {230, 60, 40}, kDark[3] = {40, 160, 200};
-
-std::shared_ptr<TextureImage> checker_image() {
-  std::vector<unsigned char> p;
-  for (int y = 0; y < kTexels; ++y) {
-    for (int x = 0; x < kTexels; ++x) {
-      const bool light = (x * kSquares / kTexels + y * kSquares / kTexels) % 2 == 0;
-      const unsigned char* c = light ? kLight : kDark;
-      p.insert(p.end(), {c[0], c[1], c[2], 255});
-    }
-  }
-  std::string bytes;
-  stbi_write_png_to_func(
-      [](void* out, void* data, int size) {
-        static_cast<std::string*>(out)->append(static_cast<const char*>(data), size_t(size));
-      },
-      &bytes, kTexels, kTexels, 4, p.data(), kTexels * 4);
-  return decode_texture(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(),
-                        "checker");
-}
-
-// The floor square (i, j)'s corners, x from i, z from j, at y = 0, facing up (+y); texture
-// coordinates u along x, v along z.
-std::array<Vec3, 4> square(float i0, float j0, float i1, float j1) {
-  return {Vec3(i0, 0, j0), Vec3(i0, 0, j1), Vec3(i1, 0, j1), Vec3(i1, 0, j0)};
-}
-
-// A 1 x 1 x 1 room lit by a ceiling panel; its floor checker-textured, or cut into squares.
-SceneDescription room(const std::shared_ptr<TextureImage>& checker, bool textured) {
-  SceneDescription d;
-  const Vec3 wall(0.6f), none(0.0f);
-  add_quad(d, "ceiling", {0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}, wall, none);
-  add_quad(d, "lamp", {0.4f, 0.999f, 0.4f}, {0.6f, 0.999f, 0.4f}, {0.6f, 0.999f, 0.6f},
-           {0.4f, 0.999f, 0.6f}, none, Vec3(20.0f));
-  add_quad(d, "x0", {0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}, wall, none);
-  add_quad(d, "x1", {1, 0, 0}, {1, 0, 1}, {1, 1, 1}, {1, 1, 0}, wall, none);
-  add_quad(d, "z0", {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, wall, none);
-  add_quad(d, "z1", {0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}, wall, none);
-  if (textured) {
-    ObjectDescription o;
-    o.name = "floor";
-    o.material = {checker->mean, none};  // Kd 1 times the texture's mean
-    o.base_texture.image = checker;
-    const std::array<Vec3, 4> q = square(0, 0, 1, 1);
-    o.triangles = {{q[0], q[1], q[2]}, {q[0], q[2], q[3]}};
-    auto uv = [](const Vec3& p) { return Vec2(p.x, p.z); };
-    o.triangle_uvs = {{uv(q[0]), uv(q[1]), uv(q[2])}, {uv(q[0]), uv(q[2]), uv(q[3])}};
-    d.roots.push_back(int32_t(d.objects.size()));
-    d.objects.push_back(std::move(o));
-  } else {
-    const TextureImage::Level& l = checker->levels.front();
-    for (int i = 0; i < kSquares; ++i) {
-      for (int j = 0; j < kSquares; ++j) {
-        // The square's colour as decoded: a texel in its middle.
-        const int x = i * kTexels / kSquares + 2, y = j * kTexels / kSquares + 2;
-        const Vec4 c = l.texels[size_t(y) * size_t(l.width) + size_t(x)];
-        const float s = 1.0f / kSquares;
-        const std::array<Vec3, 4> q = square(i * s, j * s, (i + 1) * s, (j + 1) * s);
-        add_quad(d, "floor " + std::to_string(i) + " " + std::to_string(j), q[0], q[1], q[2], q[3],
-                 Vec3(c), none);
-      }
-    }
-  }
-  return d;
-}
-
-// The same room lit by its floor alone: a checker-textured emitter, or squares each emitting
-// their colour.
-SceneDescription room_lit_by_the_floor(const std::shared_ptr<TextureImage>& checker,
-                                       bool textured) {
-  SceneDescription d = room(checker, textured);
-  for (ObjectDescription& o : d.objects) {
-    if (o.name == "lamp") o.material.emission = Vec3(0.0f);
-    if (o.name.rfind("floor", 0) != 0) continue;
-    o.material.emission = o.material.reflectance;
-    o.material.reflectance = Vec3(0.0f);
-    if (textured) o.emissive_texture = std::exchange(o.base_texture, {});
-  }
-  return d;
-}
+constexpr int kSquares = kCheckerSquares, kTexels = kCheckerTexels;
 
 // A vertex value (radiosity, or irradiance when `arriving`) integrated over the leaves of the
 // polygons `pick` selects, into the bin of each leaf's centroid.
@@ -126,9 +42,9 @@ std::vector<DVec3> integrate(const SolverState& s, Pick pick, Bin bin, size_t bi
 }
 
 TEST(TextureFactors, AVertexReadsItsTexelWhenSmallAndTheMeanWhenItCoversTheImage) {
-  const auto checker = checker_image();
+  const auto checker = checker_texture();
   ASSERT_TRUE(checker);
-  const SceneDescription d = room(checker, true);
+  const SceneDescription d = checker_room(checker, true);
   const Hierarchy h = build_hierarchy(d);
   const size_t floor = h.triangles.size() - 2;
   ASSERT_TRUE(is_textured(h.triangles, floor, h.objects.back()));
@@ -148,8 +64,8 @@ TEST(TextureFactors, AVertexReadsItsTexelWhenSmallAndTheMeanWhenItCoversTheImage
 }
 
 TEST(TextureFactors, RegroupingKeepsTheTexturesAndTheirCoordinates) {
-  const auto checker = checker_image();
-  const Hierarchy h = build_hierarchy(room(checker, true));
+  const auto checker = checker_texture();
+  const Hierarchy h = build_hierarchy(checker_room(checker, true));
   for (const HierarchyMode mode : {HierarchyMode::Automatic, HierarchyMode::Flat}) {
     const Hierarchy r = regrouped_hierarchy(h, mode);
     ASSERT_EQ(r.triangles.uv.size(), r.triangles.size()) << to_string(mode);
@@ -169,10 +85,10 @@ TEST(TextureFactors, RegroupingKeepsTheTexturesAndTheirCoordinates) {
 }
 
 TEST(TextureFactors, ACheckerFloorSolvesAsTheFloorCutIntoColouredSquares) {
-  const auto checker = checker_image();
+  const auto checker = checker_texture();
   ASSERT_TRUE(checker);
-  const Hierarchy ht = build_hierarchy(room(checker, true));
-  const Hierarchy hs = build_hierarchy(room(checker, false));
+  const Hierarchy ht = build_hierarchy(checker_room(checker, true));
+  const Hierarchy hs = build_hierarchy(checker_room(checker, false));
   const auto vt = make_visibility_backend(BackendKind::Embree, ht);
   const auto vs = make_visibility_backend(BackendKind::Embree, hs);
   SolverOptions o;
@@ -217,7 +133,7 @@ TEST(TextureFactors, ACheckerFloorSolvesAsTheFloorCutIntoColouredSquares) {
   }
   // The pattern shows: each square reflects its own colour. A vertex on a square's edge reads
   // both colours half and half, and the elements beside it blend them, so light squares lose
-  // a little of what dark ones gain (3% of the contrast here); not a quarter of it.
+  // a little of what dark ones gain (7% of the contrast here); not a quarter of it.
   for (size_t c = 0; c < floor_t.size(); ++c) {
     for (int k = 0; k < 3; ++k) {
       const double contrast = std::abs(floor_s[0][k] - floor_s[1][k]);
@@ -228,10 +144,10 @@ TEST(TextureFactors, ACheckerFloorSolvesAsTheFloorCutIntoColouredSquares) {
 }
 
 TEST(TextureFactors, ACheckerEmitterLightsAsTheEmitterCutIntoColouredSquares) {
-  const auto checker = checker_image();
+  const auto checker = checker_texture();
   ASSERT_TRUE(checker);
-  const Hierarchy ht = build_hierarchy(room_lit_by_the_floor(checker, true));
-  const Hierarchy hs = build_hierarchy(room_lit_by_the_floor(checker, false));
+  const Hierarchy ht = build_hierarchy(checker_lit_room(checker, true));
+  const Hierarchy hs = build_hierarchy(checker_lit_room(checker, false));
   const auto vt = make_visibility_backend(BackendKind::Embree, ht);
   const auto vs = make_visibility_backend(BackendKind::Embree, hs);
   SolverOptions o;

@@ -11,39 +11,8 @@
 namespace rad {
 namespace {
 
-// A 2 x 1 x 1 room whose left half has a lamp; a screen across the middle (x = 1, up to
-// y = 0.6) faces the lamp, and light reaches its far side only over it. `screen` is the
-// screen's objects.
-std::string room(const std::string& screen) {
-  auto quad = [](const std::string& name, const std::string& flags, const std::string& corners,
-                 const std::string& material) {
-    return "Object \"" + name + "\" Pure " + flags + " {\n" + material + "\nData {\n" + corners +
-           "}\n}\n";
-  };
-  const std::string wall = "Reflectivity 0.7 Color <1 1 1> Emission 0";
-  std::string s = "\"screen room\"\nObject \"room\" Assembly {\n";
-  s += quad("floor", "", "<0 0 0> <0 0 1> <2 0 1>\n<0 0 0> <2 0 1> <2 0 0>\n", wall);
-  s += quad("ceiling", "", "<0 1 0> <2 1 0> <2 1 1>\n<0 1 0> <2 1 1> <0 1 1>\n", wall);
-  s += quad("x0", "", "<0 0 0> <0 1 0> <0 1 1>\n<0 0 0> <0 1 1> <0 0 1>\n", wall);
-  s += quad("x2", "", "<2 0 0> <2 0 1> <2 1 1>\n<2 0 0> <2 1 1> <2 1 0>\n", wall);
-  s += quad("z0", "", "<0 0 0> <2 0 0> <2 1 0>\n<0 0 0> <2 1 0> <0 1 0>\n", wall);
-  s += quad("z1", "", "<0 0 1> <0 1 1> <2 1 1>\n<0 0 1> <2 1 1> <2 0 1>\n", wall);
-  s += quad("lamp", "",
-            "<0.4 0.999 0.4> <0.6 0.999 0.4> <0.6 0.999 0.6>\n"
-            "<0.4 0.999 0.4> <0.6 0.999 0.6> <0.4 0.999 0.6>\n",
-            "Reflectivity 0 Color <1 1 1> Emission 30");
-  return s + screen + "}\n";
-}
-
-// The screen facing the lamp (-x); its far side, the same corners turned over.
-const char* kNear = "<1 0 0.1> <1 0 0.9> <1 0.6 0.9>\n<1 0 0.1> <1 0.6 0.9> <1 0.6 0.1>\n";
-const char* kFar = "<1 0 0.1> <1 0.6 0.9> <1 0 0.9>\n<1 0 0.1> <1 0.6 0.1> <1 0.6 0.9>\n";
-const char* kScreen = "Reflectivity 0.5 Color <1 0.8 0.6> Emission 0";
-
-std::string object(const std::string& name, const std::string& flags, const char* corners) {
-  return "Object \"" + name + "\" Pure " + flags + " {\n" + kScreen + "\nData {\n" + corners +
-         "}\n}\n";
-}
+// The screen facing the lamp, and turned over to face away (the same corners).
+constexpr bool kNear = false, kFar = true;
 
 // Radiosity integrated over triangles [first, last) of `s`'s hierarchy.
 DVec3 integral(const SolverState& s, size_t first, size_t last) {
@@ -70,10 +39,11 @@ std::pair<size_t, size_t> triangles_of(const Hierarchy& h, const std::string& na
 }
 
 TEST(TwoSided, APanelSolvesAsTwoOneSidedPanelsBackToBack) {
-  const Hierarchy one = build_hierarchy(
-      parse_scene_text(room(object("screen", "TwoSided Yes", kNear)), "two_sided.des"));
+  const Hierarchy one = build_hierarchy(parse_scene_text(
+      screen_room(screen_object("screen", "TwoSided Yes", kNear)), "two_sided.des"));
   const Hierarchy two = build_hierarchy(parse_scene_text(
-      room(object("near", "", kNear) + object("far", "", kFar)), "back_to_back.des"));
+      screen_room(screen_object("near", "", kNear) + screen_object("far", "", kFar)),
+      "back_to_back.des"));
   const auto [first, last] = triangles_of(one, "screen");
   ASSERT_EQ(last - first, 4u) << "two triangles, each facing both ways";
   EXPECT_TRUE(one.objects[one.triangles.object[first]].two_sided);
@@ -111,16 +81,16 @@ TEST(TwoSided, APanelSolvesAsTwoOneSidedPanelsBackToBack) {
 }
 
 TEST(TwoSided, OneSidedThePanelsBackIsNotThere) {
-  const Hierarchy h =
-      build_hierarchy(parse_scene_text(room(object("screen", "", kNear)), "one_sided.des"));
+  const Hierarchy h = build_hierarchy(
+      parse_scene_text(screen_room(screen_object("screen", "", kNear)), "one_sided.des"));
   const auto [first, last] = triangles_of(h, "screen");
   EXPECT_EQ(last - first, 2u);
   EXPECT_FALSE(h.objects[h.triangles.object[first]].two_sided);
   // `TwoSided No` below a two-sided Assembly: the nearest setting wins.
-  const Hierarchy n = build_hierarchy(
-      parse_scene_text("\"s\"\nObject \"g\" Assembly TwoSided Yes {\n" +
-                           object("a", "TwoSided No", kNear) + object("b", "", kFar) + "}\n",
-                       "nested.des"));
+  const Hierarchy n = build_hierarchy(parse_scene_text(
+      "\"s\"\nObject \"g\" Assembly TwoSided Yes {\n" + screen_object("a", "TwoSided No", kNear) +
+          screen_object("b", "", kFar) + "}\n",
+      "nested.des"));
   EXPECT_EQ(triangles_of(n, "a").second - triangles_of(n, "a").first, 2u);
   EXPECT_EQ(triangles_of(n, "b").second - triangles_of(n, "b").first, 4u);
 }
