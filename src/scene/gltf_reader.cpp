@@ -701,8 +701,7 @@ Model parse_gltf(std::string_view bytes, const std::string& path, const std::str
     }
     if (!group.triangles.empty()) m.groups.push_back(std::move(group));
   }
-  if (fallback_used)
-    m.materials.push_back({"default", Vec3(0.8f), Vec3(0.0f), {}, {}, SourceLoc{path}});
+  if (fallback_used) m.materials.push_back(fallback_material("default", SourceLoc{path}));
   if (m.groups.empty()) {
     if (skipped > 0) {
       fail(path,

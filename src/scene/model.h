@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.h"
@@ -26,6 +27,14 @@ struct ModelMaterial {
   /// Whether its faces need texture coordinates: it has a texture or a cut-out.
   bool uses_coordinates() const { return base_texture || emissive_texture || cutout; }
 };
+
+/// The material of faces that name none: grey 0.8, called `name`, defined at `loc`.
+inline ModelMaterial fallback_material(std::string name, SourceLoc loc) {
+  ModelMaterial m;
+  m.name = std::move(name);
+  m.loc = std::move(loc);
+  return m;
+}
 
 /// A named part of the model (OBJ `o`/`g`): triangles, each with its material.
 struct ModelGroup {

@@ -401,8 +401,7 @@ Model parse_obj_text(std::string obj, std::string_view mtl, const std::string& p
                               "the texture's mean colour" +
                               (m.materials[uvless_material].cutout ? " and are not cut out" : ""));
   }
-  if (fallback_used)
-    m.materials.push_back({"default", Vec3(0.8f), Vec3(0.0f), {}, {}, SourceLoc{path}});
+  if (fallback_used) m.materials.push_back(fallback_material("default", SourceLoc{path}));
   // What the model loses, once per kind at its first line; a model of nothing else is refused.
   std::string lost;
   for (const Dropped& d : dropped) {

@@ -295,7 +295,7 @@ Model parse_ply(std::string_view bytes, const std::string& path) {
   Model m;
   m.path = path;
   const std::string stem = std::filesystem::path(path).stem().string();
-  m.materials.push_back({stem, Vec3(0.8f), Vec3(0.0f), {}, {}, SourceLoc{path}});
+  m.materials.push_back(fallback_material(stem, SourceLoc{path}));
   ModelGroup g;
   g.name = stem;
   for (size_t f = 0; f + 1 < d.face_first.size(); ++f) {

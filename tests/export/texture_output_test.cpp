@@ -99,15 +99,7 @@ void add_textured_quad(SceneDescription& d, const std::string& name, std::array<
 /// image, repeated and clamped), a cut-out disc standing on it.
 SceneDescription room(const std::shared_ptr<TextureImage>& squares,
                       const std::shared_ptr<TextureImage>& sign) {
-  SceneDescription d;
-  const Vec3 wall(0.6f), none(0.0f);
-  add_quad(d, "ceiling", {0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}, wall, none);
-  add_quad(d, "lamp", {0.4f, 0.999f, 0.4f}, {0.6f, 0.999f, 0.4f}, {0.6f, 0.999f, 0.6f},
-           {0.4f, 0.999f, 0.6f}, none, Vec3(20.0f));
-  add_quad(d, "x0", {0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}, wall, none);
-  add_quad(d, "x1", {1, 0, 0}, {1, 0, 1}, {1, 1, 1}, {1, 1, 0}, wall, none);
-  add_quad(d, "z0", {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, wall, none);
-  add_quad(d, "z1", {0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}, wall, none);
+  SceneDescription d = room_without_floor();
   // The floor faces up; u along x, v along z.
   auto floor = [](float x0, float x1) {
     return std::array<Vec3, 4>{Vec3(x0, 0, 0), Vec3(x0, 0, 1), Vec3(x1, 0, 1), Vec3(x1, 0, 0)};

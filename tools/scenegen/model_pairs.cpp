@@ -43,9 +43,6 @@ std::shared_ptr<TextureImage> checker_texture() {
   return texture_from_pixels(p.data(), kCheckerTexels, kCheckerTexels, "checker");
 }
 
-namespace {
-
-// The 1 x 1 x 1 room without its floor: walls and ceiling grey 0.6, the lamp under the ceiling.
 SceneDescription room_without_floor() {
   SceneDescription d;
   const Vec3 wall(0.6f), none(0.0f);
@@ -58,6 +55,8 @@ SceneDescription room_without_floor() {
   add_quad(d, "z1", {0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}, wall, none);
   return d;
 }
+
+namespace {
 
 // The floor's part x in [x0, x1], z in [z0, z1] at y = 0, facing up, as add_quad's corners.
 void add_floor(SceneDescription& d, const std::string& name, float x0, float z0, float x1, float z1,

@@ -18,6 +18,11 @@ namespace rad {
 void add_quad(SceneDescription& s, const std::string& name, Vec3 a, Vec3 b, Vec3 c, Vec3 d,
               Vec3 reflectance, Vec3 emission, int k = 1);
 
+/// The 1 x 1 x 1 room of the pairs below (x, y, z in [0, 1], y up) without its floor: walls
+/// x0, x1, z0, z1 and ceiling grey 0.6, and "lamp", a 0.2 x 0.2 panel of emission 20 facing
+/// down just under the ceiling's middle.
+SceneDescription room_without_floor();
+
 /// The checker of the checker rooms: kCheckerSquares x kCheckerSquares squares of kCheckerTexels
 /// / kCheckerSquares texels, light (230, 60, 40) where the square's i + j is even, dark
 /// (40, 160, 200) elsewhere (sRGB).
