@@ -6,11 +6,9 @@
 // a bin is the part of the surface facing one way (its normal rounded) in one cell of a 4 x 4 x 4
 // grid over the scene's box, so the two layouts' polygons meet in the same bins whatever their
 // names, numbering or vertex sharing. What a bin holds is the light a viewer shows integrated
-// over it, as the final render shows it: the radiosity, linear between the vertices, and on a
-// textured or cut-out surface the texel's emission plus its reflectance times the irradiance H,
-// sampled 16 times a leaf element.
+// over it, as a viewer of the solved mesh shows it (shown(), below), sampled 16 times a leaf
+// element. The time is the solve's alone, on all cores.
 #include <benchmark/benchmark.h>
-#include <tbb/global_control.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -41,22 +39,23 @@ struct Side {
   std::map<Key, DVec3> bins;
 };
 
-// The light shown at point x of leaf element e of polygon p.
-struct Shown {
-  const Hierarchy& h;
-  const Solution& s;
-  DVec3 at_vertex(size_t p, uint32_t v) const { return DVec3(s.radiosity(p, v)); }
-  // What the final render shows on a textured or cut-out surface (export/gathered_image.cpp):
-  // the texel's emission, and its reflectance times H, H linear over the element (weights w of
-  // its corners).
-  DVec3 textured(size_t p, const Element& el, const Vec3& x, const Vec3& w) const {
-    const SceneObject& o = h.objects[size_t(h.triangles.object[p])];
-    const TextureFactors f = texture_factor(h.triangles, p, o, x, 1e-12f);
-    Vec3 hx(0.0f);
-    for (int k = 0; k < 3; ++k) hx += s.vertex_states[p][el.v[k]].irradiance * w[k];
-    return DVec3(o.material.emission * f.emission + o.material.reflectance * f.reflectance * hx);
+// The light a viewer of the solved mesh shows at the point of leaf element `el` of polygon p with
+// barycentric weights w: the radiosity linear over the element, or on a textured or cut-out
+// surface the texel's emission (what the final render shows; the glTF output carries emission
+// per vertex) and its reflectance times H linear over the element (the glTF output's texture
+// times COLOR_0).
+DVec3 shown(const Hierarchy& h, const Solution& s, size_t p, const Element& el, const Vec3& x,
+            const Vec3& w, bool textured) {
+  Vec3 sum(0.0f);
+  if (!textured) {
+    for (int k = 0; k < 3; ++k) sum += s.radiosity(p, el.v[k]) * w[k];
+    return DVec3(sum);
   }
-};
+  const SceneObject& o = h.objects[size_t(h.triangles.object[p])];
+  const TextureFactors f = texture_factor(h.triangles, p, o, x, 1e-12f);
+  for (int k = 0; k < 3; ++k) sum += s.vertex_states[p][el.v[k]].irradiance * w[k];
+  return DVec3(o.material.emission * f.emission + o.material.reflectance * f.reflectance * sum);
+}
 
 Side solve_side(const Hierarchy& h) {
   Side side;
@@ -68,44 +67,36 @@ Side solve_side(const Hierarchy& h) {
   side.shots = s.shots.count;
   const Aabb box = h.bounds;
   const Vec3 size = glm::max(box.hi - box.lo, Vec3(1e-30f));
-  const Shown shown{h, s.solution};
   for (size_t p = 0; p < h.triangles.size(); ++p) {
     const PolygonMesh& m = s.solution.mesh.polygons[p];
     side.vertices += m.positions.size();
-    const SceneObject& o = h.objects[size_t(h.triangles.object[p])];
-    const bool textured = is_textured(h.triangles, p, o);
+    const bool textured = is_textured(h.triangles, p, h.objects[size_t(h.triangles.object[p])]);
     const Vec3 n = h.triangles.normal[p];
     for_each_leaf(m, [&](uint32_t e) {
       const Element& el = m.elements[e];
       const Vec3 a = m.positions[el.v[0]], b = m.positions[el.v[1]], c = m.positions[el.v[2]];
-      const Vec3 cell = glm::clamp((a + b + c) / 3.0f - box.lo, Vec3(0.0f), size) / size * 3.999f;
-      const Key key{int(cell.x),
-                    int(cell.y),
-                    int(cell.z),
-                    int(std::lround(n.x * 10)),
-                    int(std::lround(n.y * 10)),
-                    int(std::lround(n.z * 10))};
-      DVec3 mean(0.0);
-      if (!textured) {
-        for (int k = 0; k < 3; ++k) mean += shown.at_vertex(p, el.v[k]) / 3.0;
-      } else {
-        // 16 points, one in each of 16 congruent sub-triangles (centroids of the 4 x 4 split).
-        constexpr int kSplit = 4;
-        int count = 0;
-        for (int i = 0; i < kSplit; ++i) {
-          for (int j = 0; i + j < kSplit; ++j) {
-            for (int up = 0; up < 2 && i + j + up < kSplit; ++up) {
-              const float u = (float(i) + (up ? 2.0f : 1.0f) / 3.0f) / kSplit;
-              const float v = (float(j) + (up ? 2.0f : 1.0f) / 3.0f) / kSplit;
-              const Vec3 w(1.0f - u - v, u, v);
-              mean += shown.textured(p, el, a * w.x + b * w.y + c * w.z, w);
-              ++count;
-            }
+      // 16 points, one in each of the 16 congruent triangles of the element's 4 x 4 split (their
+      // centroids), each into the bin it lies in: an element across a cell's side is shared.
+      constexpr int kSplit = 4;
+      const double weight = double(el.area) / (kSplit * kSplit);
+      for (int i = 0; i < kSplit; ++i) {
+        for (int j = 0; i + j < kSplit; ++j) {
+          for (int up = 0; up < 2 && i + j + up < kSplit; ++up) {
+            const float u = (float(i) + (up ? 2.0f : 1.0f) / 3.0f) / kSplit;
+            const float v = (float(j) + (up ? 2.0f : 1.0f) / 3.0f) / kSplit;
+            const Vec3 w(1.0f - u - v, u, v);
+            const Vec3 x = a * w.x + b * w.y + c * w.z;
+            const Vec3 cell = glm::clamp(x - box.lo, Vec3(0.0f), size) / size * 3.999f;
+            const Key key{int(cell.x),
+                          int(cell.y),
+                          int(cell.z),
+                          int(std::lround(n.x * 10)),
+                          int(std::lround(n.y * 10)),
+                          int(std::lround(n.z * 10))};
+            side.bins[key] += shown(h, s.solution, p, el, x, w, textured) * weight;
           }
         }
-        mean /= double(count);
       }
-      side.bins[key] += mean * double(el.area);
     });
   }
   return side;
@@ -145,10 +136,15 @@ void bm_pair(benchmark::State& st, const std::function<Hierarchy()>& make_a,
   st.counters["difference_pct"] = 100.0 * difference(a, b);
 }
 
+// Where the Cornell box is written as an OBJ soup and as glTF.
+std::string pairs_folder() {
+  return (std::filesystem::temp_directory_path() / ("rad_pairs_" + std::to_string(getpid())))
+      .string();
+}
+
 void register_all() {
   const std::string cornell = RAD_SOURCE_DIR "/scenes/cornell_box.des";
-  const std::string dir =
-      (std::filesystem::temp_directory_path() / ("rad_pairs_" + std::to_string(getpid()))).string();
+  const std::string dir = pairs_folder();
   std::filesystem::create_directories(dir);
   auto description = [=] { return load_hierarchy(cornell, {}, std::nullopt); };
   auto soup = [=] {
@@ -192,6 +188,9 @@ void register_all() {
 }
 
 }  // namespace
+
+void remove_pairs_folder() { std::filesystem::remove_all(pairs_folder()); }
+
 }  // namespace rad
 
 int main(int argc, char** argv) {
@@ -199,5 +198,6 @@ int main(int argc, char** argv) {
   rad::register_all();
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
+  rad::remove_pairs_folder();
   return 0;
 }

@@ -181,8 +181,8 @@ def model_pairs(out):
                      ratio(b["seconds_a"], b["seconds_b"]),
                      f"{b['shots_a']:.0f} / {b['shots_b']:.0f}",
                      f"{b['vertices_a']:,.0f} / {b['vertices_b']:,.0f}"])
-    print("\nThe same scene written two ways (bench/model_pairs_bench: defaults, converged, 2 "
-          "threads)")
+    print("\nThe same scene written two ways (bench/model_pairs_bench: defaults, converged, all "
+          "cores)")
     print(table(rows, ["written as", "against", "difference", "time", "against", "÷", "shots",
                        "vertices"], ["<", "<", ">", ">", ">", ">", ">", ">"]))
     print("  target: difference ≤ 0.5% of the mean in comparable time (the light shown, binned "

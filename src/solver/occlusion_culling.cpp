@@ -195,8 +195,9 @@ ShotOccluders choose_occluders(const OcclusionCulling& c, const ShotSource& src)
   if (ends.empty()) ends = src.box;
   so.source = ends;
   // A point or spot light's rays end at its position, not off a surface: only rounding moves
-  // them. Grown by the whole margin, a lamp hung within it of a ceiling would see past the top
-  // of every wall (their crossings would come within the margin of the walls' top edges).
+  // them. Grown by the whole margin, a lamp hung less than two margins under a ceiling would see
+  // over the top of every wall (the crossings would come within the margin of the walls' top
+  // edges); hung more than one, it is now hidden from what lies far beyond a wall near it.
   const bool at_point = src.light >= 0 && src.emitter->kind != LightKind::Directional;
   so.source_margin = float(at_point ? c.rounding : c.margin);
   const DVec3 centre(ends.center()), half(ends.extent() * 0.5f);

@@ -103,12 +103,13 @@ TEST(OcclusionCulling, ALightSeesPartOfTheRoomsBeyondItsDoorsAndLittleOfTheRoomA
   EXPECT_GT(shown[0], all[0] / 2);
 }
 
-TEST(OcclusionCulling, ALampHungWithinTheMarginOfTheCeilingIsHiddenByTheWallsToTheirTops) {
+TEST(OcclusionCulling, ALampAMarginAndAHalfUnderTheCeilingIsHiddenByTheWallsToTheirTops) {
   // Two closed rooms 15 m apart, a point light in the first hung 1.5 culling margins under its
-  // ceiling. Its rays end at the lamp itself, so the first room's wall hides the whole second
-  // room from it, up to the wall's top: were the lamp's end of the segments grown by the margin
-  // as a surface's is, their crossings would come within the margin of that top and the second
-  // room's triangles that reach its ceiling would stay (checked: all of them did).
+  // ceiling. Its rays end at the lamp itself, so its end of the segments grows by rounding
+  // alone, and the first room's wall hides the whole second room from it, up to the wall's top.
+  // Grown by the margin as a surface's end is, the lamp's end would reach within half a margin
+  // of the ceiling, the crossings within the margin of the wall's top, and none of the second
+  // room would be hidden.
   SceneDescription d;
   testing::add_closed_box(d, {0, 0, 0}, {5, 3, 5}, Vec3(0.5f), Vec3(0.0f));
   testing::add_closed_box(d, {20, 0, 0}, {25, 3, 5}, Vec3(0.5f), Vec3(0.0f));

@@ -1,5 +1,5 @@
-// Scenes written two ways that must solve alike (docs/models.md, "the same answer however the
-// scene is written"): a checker-textured floor and the floor cut into coloured squares, a
+// Scenes written two ways that must solve alike (docs/models.md, "The same scene written two
+// ways"): a checker-textured floor and the floor cut into coloured squares, a
 // cut-out leaf and the leaf cut as polygons, a two-sided screen and two one-sided screens back
 // to back, a model as a description and as an OBJ whose every triangle has its own vertices.
 // The tests prove each pair agrees; bench/model_pairs_bench.cpp times both sides.
