@@ -25,6 +25,7 @@ constexpr int kFinePerSample = 16;
 struct FinePoint {
   Vec3 position, normal, unshot;
   float area;
+  Vec3 cell_u, cell_v;  // ShotSource::fine_cell_u, fine_cell_v
 };
 
 // Splits points[lo, hi) into `groups` strata of about equal area by median cuts along the
@@ -111,11 +112,16 @@ ShotSource make_cluster_source(const SolverState& s, int32_t c, Value value) {
     const int q = std::clamp(int(std::ceil(std::sqrt(share) - 1e-4f)), 1, max_q);
     const float piece = tris.area[t] / float(q * q);
     const auto& c3 = tris.corners[t];
+    const Vec3 cell_u = (c3[1] - c3[0]) / float(q), cell_v = (c3[2] - c3[0]) / float(q);
     for (const Vec3& w : s.scene.barycentric_grids[size_t(q)]) {
+      // An upward cell's centroid lies a third of a step into it along b, a downward one's two
+      // thirds (regular_sample_barycentrics); a downward cell's edges run the other way.
+      const float step = w.y * float(q);
+      const float sign = step - std::floor(step) < 0.5f ? 1.0f : -1.0f;
       fine.push_back({c3[0] * w.x + c3[1] * w.y + c3[2] * w.z, tris.normal[t],
                       interpolate_at(
                           s.solution.mesh.polygons[t], [&](uint32_t v) { return value(t, v); }, w),
-                      piece});
+                      piece, cell_u * sign, cell_v * sign});
     }
   }
   const uint32_t strata = std::min<uint32_t>(n, uint32_t(fine.size()));
@@ -174,8 +180,11 @@ ShotSource make_cluster_source(const SolverState& s, int32_t c, Value value) {
     for (; i < by_stratum.size() && stratum_of[by_stratum[i]] == g; ++i) {
       const FinePoint& p = fine[by_stratum[i]];
       src.fine_sample.push_back(p.position, p.normal, p.area, p.unshot);
+      src.fine_cell_u.push_back(p.cell_u), src.fine_cell_v.push_back(p.cell_v);
     }
     src.fine_sample.pad();
+    src.fine_cell_u.resize(src.fine_sample.size(), Vec3(0.0f));
+    src.fine_cell_v.resize(src.fine_sample.size(), Vec3(0.0f));
     src.fine_group_parent.resize(src.fine_sample.size() / SampleLanes::kLanes, g);
   }
   // Near field: closer than two sample spacings (extent / m).
@@ -308,18 +317,18 @@ void draw_ray_ends(const ShotSource& src, uint64_t key, float offset, std::vecto
         acc += w;
         if (acc >= draw) break;
       }
-      // Anywhere in the fine point's cell, taken as the disc of its area in its plane: rays
-      // that end on the fine points alone see a source's visibility in steps of a fine point
-      // however many of them are drawn, the steps a penumbra would show.
-      const Vec3 normal = f.normal(pick);
-      DVec3 u, w;
-      plane_frame(DVec3(normal), u, w);
+      // Anywhere in the fine point's cell (uniform over the sub-triangle): rays that end on the
+      // fine points alone see a source's visibility in steps of a fine point however many of
+      // them are drawn, the steps a penumbra would show. In the cell, not around the point: an
+      // end beyond the source's edge may lie behind the wall it meets, and its blocked rays
+      // would darken every vertex that sees the edge.
       const uint64_t bits = splitmix64(key * 0x9e3779b97f4a7c15ull + g);
-      const double radius = std::sqrt(double(f.area[pick]) / std::numbers::pi *
-                                      ((double(bits >> 40) + 0.5) * 0x1p-24));
-      const double angle = 2.0 * std::numbers::pi * ((double(bits & 0xFFFFFF) + 0.5) * 0x1p-24);
-      const Vec3 at = f.point(pick) + Vec3((u * std::cos(angle) + w * std::sin(angle)) * radius);
-      const Vec3 end = off_surface(at, normal, offset);
+      float a = (float(bits >> 40) + 0.5f) * 0x1p-24f;
+      float b = (float(bits & 0xFFFFFF) + 0.5f) * 0x1p-24f;
+      if (a + b > 1.0f) a = 1.0f - a, b = 1.0f - b;
+      const Vec3 at = f.point(pick) + src.fine_cell_u[pick] * (a - 1.0f / 3.0f) +
+                      src.fine_cell_v[pick] * (b - 1.0f / 3.0f);
+      const Vec3 end = off_surface(at, f.normal(pick), offset);
       out[g] = end.x, out[n + g] = end.y, out[2 * n + g] = end.z;
     }
     group = last;

@@ -93,6 +93,11 @@ struct ShotSource {
   // kLanes (g + 1)) all belong to sample fine_group_parent[g], whose visibility they take.
   SampleLanes fine_sample;
   std::vector<uint32_t> fine_group_parent;
+  // Per lane of fine_sample: the fine point's cell, the sub-triangle of its triangle's regular
+  // grid whose centroid it is, as the edges u, v from the cell's first corner (0 for padding):
+  // the cell is the point + (a - 1/3) u + (b - 1/3) v for a, b >= 0, a + b <= 1. Penumbra
+  // rounds end their rays there (draw_ray_ends), on the source and nowhere else.
+  std::vector<Vec3> fine_cell_u, fine_cell_v;
   // Russian roulette (Arvo and Kirk, "Particle transport and image synthesis", SIGGRAPH 1990)
   // over the receivers: where a point's gain is bounded by `level` times q(x) < 1 (roulette_q),
   // it gathers only when q(x) > draw and divides its gain by q(x). One draw per shot, so a

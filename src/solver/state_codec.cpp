@@ -68,6 +68,7 @@ void write_shot(ByteWriter& w, const ShotSource& s) {
   w.vec(s.end_x), w.vec(s.end_y), w.vec(s.end_z);
   write_lanes(w, s.fine_sample);
   w.vec(s.fine_group_parent);
+  w.vec(s.fine_cell_u), w.vec(s.fine_cell_v);
   w.pod(s.light_group);
   w.pod(uint64_t(s.groups.size()));
   for (const GroupShare& g : s.groups) {
@@ -117,6 +118,7 @@ ShotSource read_shot(ByteReader& r, size_t clusters, const std::vector<Light>& l
     read_lanes(r, lanes);
     std::vector<uint32_t> parents;
     r.vec(parents);
+    r.vec(none), r.vec(none);  // the fine points' cells
     ShotSource empty;
     read_groups(r, empty);
     if (!empty.groups.empty()) r.fail("a light's shot with a cluster's light groups");
@@ -155,6 +157,9 @@ ShotSource read_shot(ByteReader& r, size_t clusters, const std::vector<Light>& l
   for (uint32_t g : s.fine_group_parent) {
     if (g >= s.sample_count) r.fail("a fine sample group of no sample");
   }
+  r.vec(s.fine_cell_u), r.vec(s.fine_cell_v);
+  if (s.fine_cell_u.size() != s.fine_sample.size() || s.fine_cell_v.size() != s.fine_sample.size())
+    r.fail("fine sample cells do not match their lanes");
   read_groups(r, s);
   return s;
 }
