@@ -83,6 +83,45 @@ bool needs_split(const Solution& s, const BuriedVertices& buried, size_t p, uint
   return size >= min_split_size * std::exp2(-kCoverSplits);
 }
 
+// A computed midpoint whose shot gain the straight line between its edge's ends misses by more
+// than this share of the subdivision limit is *bent*: the elements it is a corner of split again
+// down to the minimum size though their vertices differ less, for the shot's light has a kink
+// there (a penumbra's edge) that a linear element would smear across its width.
+constexpr float kBendShare = 0.25f;
+
+// Whether midpoint `mid` of edge (a, b) of polygon p is bent by the shot just gathered (its
+// last_gain against its ends'). Gains are weighed by the material's reflectance, not the
+// texel's: a texture's own pattern is no bend of the light. A vertex inside a solid gathers
+// elsewhere (buried_vertices.h) and takes no part.
+bool is_bent(const Solution& s, const BuriedVertices& buried, uint32_t p, uint32_t mid, uint32_t a,
+             uint32_t b, float limit) {
+  if (buried.is_moved(p, mid) || buried.is_moved(p, a) || buried.is_moved(p, b)) return false;
+  const std::vector<VertexState>& vs = s.vertex_states[p];
+  const Vec3 rho = s.material_of(p).reflectance;
+  return differs(rho * vs[mid].last_gain, rho * (vs[a].last_gain + vs[b].last_gain) * 0.5f,
+                 limit * kBendShare);
+}
+
+// Whether element e of polygon p holds the edge of a major shot's shadow: one of its vertices
+// got nothing from the shot (all its rays blocked) and another more than the bend's share of the
+// limit. The light rises from nothing with a kink at an umbra's edge, which a straight line
+// across the element carries into the umbra; and where the light grows in small steps (a source
+// whose samples cross the occluder's edge one by one) no two vertices differ by the limit.
+bool holds_shadow_edge(const Solution& s, const BuriedVertices& buried, uint32_t p, uint32_t e,
+                       float limit) {
+  const PolygonMesh& m = s.mesh.polygons[p];
+  const std::vector<VertexState>& vs = s.vertex_states[p];
+  const Vec3 rho = s.material_of(p).reflectance;
+  bool dark = false, lit = false;
+  for (uint32_t v : m.elements[e].v) {
+    if (buried.is_moved(p, v)) return false;
+    const Vec3 g = vs[v].last_gain;
+    dark = dark || g == Vec3(0.0f);
+    lit = lit || max_component(glm::abs(rho * g)) > limit * kBendShare;
+  }
+  return dark && lit;
+}
+
 }  // namespace
 
 bool needs_refinement(const SolverOptions& options, const EnergyBalance& energy,
@@ -138,12 +177,13 @@ Vec3 regather_shots(const Hierarchy& h, const Clusters& clusters, const ShotLog&
 namespace {
 
 // The splitting both refinements share. `reached`: after a shot, the polygons it reached (they
-// may copy each other's new midpoints, and the options' midpoint rule applies); null after an
-// edit, where every new midpoint is computed. compute(x, scratch) sets a computed new midpoint's
-// state.
+// may copy each other's new midpoints, and the options' midpoint rule applies; after a major
+// shot with exact midpoints, a bent one splits its elements again, is_bent, and so does an
+// element across the shot's shadow edge, holds_shadow_edge); null after an edit, where every
+// new midpoint is computed. compute(x, scratch) sets a computed new midpoint's state.
 template <typename Compute>
 void refine(RefineContext ctx, std::span<const uint32_t> polygons, const Receivers* reached,
-            const VisibilityBackend& vis, const Compute& compute) {
+            bool major, const VisibilityBackend& vis, const Compute& compute) {
   const bool after_shot = reached != nullptr;
   const Triangles& tris = ctx.solution.hierarchy->triangles;
   const float limit = ctx.options.subdivision_threshold * ctx.energy.radiosity_scale;
@@ -164,6 +204,12 @@ void refine(RefineContext ctx, std::span<const uint32_t> polygons, const Receive
   std::vector<uint64_t> splits(np, 0), interpolated(np, 0);
   std::vector<VisibilityStats> probes(np);
 
+  // Per polygon, the exact midpoints of the last pass that are bent (sorted). Only after a
+  // major shot, whose sharp shadows the interpolation of later vertices keeps (the umbra scene's
+  // minor shots bend nowhere; a building's many need not pay for looking).
+  const bool bends = after_shot && all_exact && major;
+  std::vector<std::vector<uint32_t>> bent(np);
+  std::vector<uint8_t> bent_flat;
   std::vector<ExactVertex> flat;
   // The first pass looks at every leaf of the polygons as it walks them (a list per polygon
   // would cost a million allocations a shot in a large scene, most polygons never splitting);
@@ -186,7 +232,15 @@ void refine(RefineContext ctx, std::span<const uint32_t> polygons, const Receive
         auto consider = [&](uint32_t e) {
           const uint32_t v[3] = {m.elements[e].v[0], m.elements[e].v[1], m.elements[e].v[2]};
           std::array<bool, 3> d;
-          if (!needs_split(ctx.solution, ctx.scene.buried, p, e, limit, min_split_size, &d)) return;
+          if (!needs_split(ctx.solution, ctx.scene.buried, p, e, limit, min_split_size, &d)) {
+            if (!bends || element_size(m, e) < min_split_size) return;
+            const std::vector<uint32_t>& b = bent[i];
+            auto is_in = [&](uint32_t x) { return std::binary_search(b.begin(), b.end(), x); };
+            if (!(is_in(v[0]) || is_in(v[1]) || is_in(v[2])) &&
+                !holds_shadow_edge(ctx.solution, ctx.scene.buried, p, e, limit))
+              return;
+            d = {true, true, true};
+          }
           const bool d01 = d[0], d12 = d[1], d20 = d[2];
           const bool exact_edge[3][3] = {{false, d01, d20}, {d01, false, d12}, {d20, d12, false}};
           auto index_of = [&](uint32_t x) { return x == v[0] ? 0 : x == v[1] ? 1 : 2; };
@@ -291,6 +345,22 @@ void refine(RefineContext ctx, std::span<const uint32_t> polygons, const Receive
             ctx.solution.group_states[size_t(x.from_polygon)][x.from_vertex * groups + g];
       }
     });
+    // 5. Which of them are bent, computed or copied alike (a copy's state is the shot's at the
+    //    same point), for the next pass.
+    if (bends) {
+      bent_flat.assign(flat.size(), 0);
+      tbb::parallel_for(size_t(0), flat.size(), [&](size_t i) {
+        const ExactVertex& x = flat[i];
+        bent_flat[i] =
+            is_bent(ctx.solution, ctx.scene.buried, x.polygon, x.vertex, x.a, x.b, limit);
+      });
+      for (size_t i = 0, at = 0; i < np; at += exact[i].size(), ++i) {
+        bent[i].clear();
+        for (size_t j = 0; j < exact[i].size(); ++j)
+          if (bent_flat[at + j]) bent[i].push_back(exact[i][j].vertex);
+        std::sort(bent[i].begin(), bent[i].end());
+      }
+    }
     ctx.stats.exact_midpoints += flat.size();
     any = false;
     for (size_t i = 0; i < np; ++i) {
@@ -314,7 +384,7 @@ void refine_after_shot(RefineContext ctx, const Receivers& reached, const ShotSo
   const Triangles& tris = h.triangles;
   const GatherSettings settings = gather_settings(ctx.options, ctx.scene, ctx.energy);
   const size_t groups = ctx.solution.group_count;
-  refine(ctx, polygons, &reached, vis, [&](const ExactVertex& x, GatherScratch& sc) {
+  refine(ctx, polygons, &reached, major, vis, [&](const ExactVertex& x, GatherScratch& sc) {
     const Vec3 at = ctx.scene.buried.gather_point(
         x.polygon, x.vertex, ctx.solution.mesh.polygons[x.polygon].positions[x.vertex]);
     const Vec3 rho = ctx.solution.reflectance(x.polygon, x.vertex);
@@ -369,7 +439,7 @@ void refine_after_edit(RefineContext ctx, const Vec3& d_rho, const VisibilityBac
   const size_t groups = ctx.solution.group_count;
   const GatherSettings settings = gather_settings(ctx.options, ctx.scene, ctx.energy);
   refine(ctx, needing_refinement(ctx.options, ctx.energy, ctx.scene, ctx.solution, polygons),
-         nullptr, vis, [&](const ExactVertex& x, GatherScratch& sc) {
+         nullptr, false, vis, [&](const ExactVertex& x, GatherScratch& sc) {
            // Every earlier shot gathered again: H exact.
            const Vec3 at = ctx.scene.buried.gather_point(
                x.polygon, x.vertex, ctx.solution.mesh.polygons[x.polygon].positions[x.vertex]);
