@@ -45,14 +45,14 @@ double worst_case_growth_bytes(const SolverState& s) {
 
 double shot_log_bytes(const SolverState& s, size_t c) {
   // n samples padded to lanes (10 floats each, 3 more for the ray ends), about 16 n fine
-  // samples (10 floats each, a group index per lane group), the outline.
+  // samples (10 floats each and 6 for their cells, a group index per lane group), the outline.
   const int m = sample_grid_for(s, s.scene.clusters.extent[c]);
   const double n = double(m) * m, fine = 16.0 * n;
   const double outline =
       double(s.scene.clusters.edge_first[c + 1] - s.scene.clusters.edge_first[c]);
   // Each light group's share: 3 floats per lane of each.
   const double shares = double(s.solution.group_count) * 4.0 * 3.0 * ((n + 8) + (fine + 8 * n));
-  return sizeof(ShotSource) + 4.0 * (13.0 * (n + 8) + 10.0 * (fine + 8 * n) + fine / 8) +
+  return sizeof(ShotSource) + 4.0 * (13.0 * (n + 8) + 16.0 * (fine + 8 * n) + fine / 8) +
          24.0 * outline + shares;
 }
 

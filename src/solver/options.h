@@ -78,9 +78,9 @@ struct SolverOptions {
   /// The final render's vertices gather their direct light again with the same rounds
   /// (solver/direct_light.h), so their bounced light stays exact (docs/solver.md).
   // 8: with refinement's bend and shadow-edge rules (refine.cpp) scenes/umbra.des comes within
-  // 0.38% to 0.44% of its reference as built, scaled, cut finer, moved and turned, against
-  // 0.52% to 0.93% with 0 (docs/solver.md). The Cornell box casts 4% more rays; the 1M
-  // building (tools/bench_lights, panels) none: none of its shots is major.
+  // 0.37% to 0.43% of its reference as built, scaled, cut finer, moved and turned, against
+  // 0.52% to 0.93% with 0 (tools/bench_umbra, docs/solver.md). The 1M building
+  // (tools/bench_lights, panels) casts no more rays: none of its shots is major.
   int penumbra_rays = 8;
   /// Penumbra rays go to the shots whose mean sample carries at least this fraction of the
   /// emitted energy: a lamp's first shot (its 16 samples step by a sixteenth of its light), not

@@ -83,10 +83,11 @@ bool needs_split(const Solution& s, const BuriedVertices& buried, size_t p, uint
   return size >= min_split_size * std::exp2(-kCoverSplits);
 }
 
-// A computed midpoint whose shot gain the straight line between its edge's ends misses by more
-// than this share of the subdivision limit is *bent*: the elements it is a corner of split again
-// down to the minimum size though their vertices differ less, for the shot's light has a kink
-// there (a penumbra's edge) that a linear element would smear across its width.
+// A new midpoint (computed or copied) whose shot gain the straight line between its edge's ends
+// misses by more than this share of the subdivision limit is *bent*: the elements it is a
+// corner of split again though their vertices differ less (and their new midpoints are looked
+// at alike, down to the minimum size), for the shot's light bends there (a penumbra's edge; also
+// a lamp's fall-off close by) and a linear element would smear the bend across its width.
 constexpr float kBendShare = 0.25f;
 
 // Whether midpoint `mid` of edge (a, b) of polygon p is bent by the shot just gathered (its
@@ -103,10 +104,12 @@ bool is_bent(const Solution& s, const BuriedVertices& buried, uint32_t p, uint32
 }
 
 // Whether element e of polygon p holds the edge of a major shot's shadow: one of its vertices
-// got nothing from the shot (all its rays blocked) and another more than the bend's share of the
-// limit. The light rises from nothing with a kink at an umbra's edge, which a straight line
-// across the element carries into the umbra; and where the light grows in small steps (a source
-// whose samples cross the occluder's edge one by one) no two vertices differ by the limit.
+// got nothing from the shot (all its rays blocked, or the source behind its plane or outside
+// a spot's cone: each a line where the light starts with a kink) and another more than the
+// bend's share of the limit. The light rises from nothing with a kink at an umbra's edge, which a
+// straight line across the element carries into the umbra; and where the light grows in small steps
+// (a source whose samples cross the occluder's edge one by one) no two vertices differ by the
+// limit.
 bool holds_shadow_edge(const Solution& s, const BuriedVertices& buried, uint32_t p, uint32_t e,
                        float limit) {
   const PolygonMesh& m = s.mesh.polygons[p];
@@ -125,13 +128,17 @@ bool holds_shadow_edge(const Solution& s, const BuriedVertices& buried, uint32_t
 }  // namespace
 
 bool needs_refinement(const SolverOptions& options, const EnergyBalance& energy,
-                      const SceneCaches& scene, const Solution& sol, uint32_t p) {
+                      const SceneCaches& scene, const Solution& sol, uint32_t p, bool major_shot) {
   const PolygonMesh& m = sol.mesh.polygons[p];
   const float limit = options.subdivision_threshold * energy.radiosity_scale;
+  const float min_split_size = 2.0f * scene.min_size;
+  const bool edges = major_shot && options.midpoints == MidpointRule::Exact;
   bool any = false;
   std::array<bool, 3> d;
   for_each_leaf(m, [&](uint32_t e) {
-    any = any || needs_split(sol, scene.buried, p, e, limit, 2.0f * scene.min_size, &d);
+    any = any || needs_split(sol, scene.buried, p, e, limit, min_split_size, &d) ||
+          (edges && holds_shadow_edge(sol, scene.buried, p, e, limit) &&
+           element_size(m, e) >= min_split_size);
   });
   return any;
 }

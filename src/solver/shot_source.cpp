@@ -323,8 +323,9 @@ void draw_ray_ends(const ShotSource& src, uint64_t key, float offset, std::vecto
       // end beyond the source's edge may lie behind the wall it meets, and its blocked rays
       // would darken every vertex that sees the edge.
       const uint64_t bits = splitmix64(key * 0x9e3779b97f4a7c15ull + g);
-      float a = (float(bits >> 40) + 0.5f) * 0x1p-24f;
-      float b = (float(bits & 0xFFFFFF) + 0.5f) * 0x1p-24f;
+      // 23 bits each, so that a draw never rounds to 1.
+      float a = (float(bits >> 41) + 0.5f) * 0x1p-23f;
+      float b = (float(bits & 0x7FFFFF) + 0.5f) * 0x1p-23f;
       if (a + b > 1.0f) a = 1.0f - a, b = 1.0f - b;
       const Vec3 at = f.point(pick) + src.fine_cell_u[pick] * (a - 1.0f / 3.0f) +
                       src.fine_cell_v[pick] * (b - 1.0f / 3.0f);

@@ -279,7 +279,7 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
       return;
     }
     count(i);
-    refining[i] = needs_refinement(s.options, s.energy, s.scene, s.solution, receivers[i]);
+    refining[i] = needs_refinement(s.options, s.energy, s.scene, s.solution, receivers[i], major);
   });
   std::vector<uint32_t> refined, to_refine;
   for (size_t i = 0; i < receivers.size(); ++i) {
