@@ -57,9 +57,10 @@ struct Solved {
   std::vector<Vec3> radiosity;
 };
 
-Solved solve_with(const Hierarchy& h, BackendKind kind, int shots) {
+Solved solve_with(const Hierarchy& h, BackendKind kind, int shots, int penumbra_rays) {
   SolverOptions o;
   o.max_shots = shots;
+  o.penumbra_rays = penumbra_rays;
   o.max_sample_grid = 4;  // 16 samples a shot: agreement, not accuracy, and brute force is slow
   SolverState s = make_solver_state(h, o);
   solve(s, *make_visibility_backend(kind, h));
@@ -72,16 +73,17 @@ Solved solve_with(const Hierarchy& h, BackendKind kind, int shots) {
   return out;
 }
 
-void expect_agreement(const std::string& name, const Hierarchy& h, int shots, bool with_brute) {
+void expect_agreement(const std::string& name, const Hierarchy& h, int shots, bool with_brute,
+                      int penumbra_rays = SolverOptions{}.penumbra_rays) {
   SCOPED_TRACE(name);
-  const Solved embree = solve_with(h, BackendKind::Embree, shots);
+  const Solved embree = solve_with(h, BackendKind::Embree, shots, penumbra_rays);
   std::vector<BackendKind> others{BackendKind::Grid};
   if (with_brute) others.push_back(BackendKind::Brute);
   float largest = 0.0f;
   for (const Vec3& b : embree.radiosity) largest = std::max(largest, max_component(b));
   ASSERT_GT(largest, 0.0f);
   for (BackendKind k : others) {
-    const Solved other = solve_with(h, k, shots);
+    const Solved other = solve_with(h, k, shots, penumbra_rays);
     size_t differing = 0;
     for (size_t p = 0; p < embree.vertices.size(); ++p)
       differing += embree.vertices[p] != other.vertices[p];
@@ -119,11 +121,15 @@ TEST(BackendAgreement, GeneratedScenesAtASmallSize) {
 }
 
 TEST(BackendAgreement, RandomBoxesThatTouchAndSoupsOnEveryBackend) {
+  // The first with the default penumbra rays, the others without: touching boxes put most
+  // vertices in a penumbra, whose rounds the brute-force oracle traces 5 times as long as the
+  // rest of the solve (the bundled umbra scene's rounds are compared above).
   for (uint32_t seed : {1u, 2u, 3u}) {
     expect_agreement("random boxes, seed " + std::to_string(seed),
-                     build_hierarchy(random_boxes(6, seed)), 5, true);
+                     build_hierarchy(random_boxes(6, seed)), 5, true,
+                     seed == 1 ? SolverOptions{}.penumbra_rays : 0);
   }
-  expect_agreement("lit soup", build_hierarchy(lit_soup(150, 5)), 4, true);
+  expect_agreement("lit soup", build_hierarchy(lit_soup(150, 5)), 4, true, 0);
 }
 
 }  // namespace
