@@ -34,4 +34,10 @@ std::array<DVec2, 2> bounds_2d(const std::array<DVec2, 3>& t);
 /// A right-handed orthonormal frame (u, w) of the plane with unit normal n (any one).
 void plane_frame(const DVec3& n, DVec3& u, DVec3& w);
 
+/// Two uniform draws a, b in [0, 1) folded into the triangle a, b >= 0, a + b <= 1: a point
+/// uniform over any triangle as corner + a (edge 1) + b (edge 2).
+inline glm::vec2 fold_into_triangle(float a, float b) {
+  return a + b > 1.0f ? glm::vec2(1.0f - a, 1.0f - b) : glm::vec2(a, b);
+}
+
 }  // namespace rad

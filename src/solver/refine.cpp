@@ -51,38 +51,6 @@ struct EdgeMidpoint {
   int64_t exact;
 };
 
-// Whether element e of polygon p (mesh m, vertex states vs) is to be split: its vertices'
-// radiosities differ by more than `limit`, or it crosses into a solid (some of its vertices
-// buried, some not: its light to shoot falls to nothing across it, buried_vertices.h), and it
-// is still at least `min_split_size`; or, down to kCoverSplits levels below that, across the
-// edge of a cover (some of its vertices covered, some not: the light falls within a few gap
-// widths). Which of its edges differ: in *d (01, 12, 20).
-constexpr float kCoverSplits = 3.0f;
-bool needs_split(const Solution& s, const BuriedVertices& buried, size_t p, uint32_t e, float limit,
-                 float min_split_size, std::array<bool, 3>* d) {
-  const PolygonMesh& m = s.mesh.polygons[p];
-  auto B = [&](uint32_t v) { return s.radiosity(p, v); };
-  const Element& el = m.elements[e];
-  const Vec3 b0 = B(el.v[0]), b1 = B(el.v[1]), b2 = B(el.v[2]);
-  const bool in0 = buried.is_moved(p, el.v[0]), in1 = buried.is_moved(p, el.v[1]),
-             in2 = buried.is_moved(p, el.v[2]);
-  *d = {in0 != in1 || differs(b0, b1, limit), in1 != in2 || differs(b1, b2, limit),
-        in2 != in0 || differs(b2, b0, limit)};
-  if (!((*d)[0] || (*d)[1] || (*d)[2])) return false;
-  const float size = element_size(m, e);
-  if (size >= min_split_size) return true;
-  // A contact stays at the smallest size: below it, vertices land on the contact lines, where
-  // the buried probes' first hits differ between the backends (they then split differently).
-  if (in0 != in1 || in1 != in2) return false;
-  const bool c0 = buried.is_covered(p, el.v[0]), c1 = buried.is_covered(p, el.v[1]),
-             c2 = buried.is_covered(p, el.v[2]);
-  if (c0 == c1 && c1 == c2) return false;
-  // Down to the same floor whatever the gap: stopping at the gap's width (a lamp 1 cm below a
-  // ceiling, elements of 2.7 cm) left the living room of tools/real_rooms at 2.89% against
-  // 2.64%, for 6% fewer vertices.
-  return size >= min_split_size * std::exp2(-kCoverSplits);
-}
-
 // A new midpoint (computed or copied) whose shot gain the straight line between its edge's ends
 // misses by more than this share of the subdivision limit is *bent*: the elements it is a
 // corner of split again though their vertices differ less (and their new midpoints are looked
@@ -125,20 +93,56 @@ bool holds_shadow_edge(const Solution& s, const BuriedVertices& buried, uint32_t
   return dark && lit;
 }
 
+// Whether element e of polygon p (mesh m, vertex states vs) is to be split: its vertices'
+// radiosities differ by more than `limit`, or it crosses into a solid (some of its vertices
+// buried, some not: its light to shoot falls to nothing across it, buried_vertices.h), or,
+// with `shadow_edges` (after a major shot, exact midpoints), it holds the shot's shadow edge,
+// and it is still at least `min_split_size`; or, down to kCoverSplits levels below that, across
+// the edge of a cover (some of its vertices covered, some not: the light falls within a few gap
+// widths). Which of its edges to split: in *d (01, 12, 20).
+constexpr float kCoverSplits = 3.0f;
+bool needs_split(const Solution& s, const BuriedVertices& buried, uint32_t p, uint32_t e,
+                 float limit, float min_split_size, bool shadow_edges, std::array<bool, 3>* d) {
+  const PolygonMesh& m = s.mesh.polygons[p];
+  auto B = [&](uint32_t v) { return s.radiosity(p, v); };
+  const Element& el = m.elements[e];
+  const Vec3 b0 = B(el.v[0]), b1 = B(el.v[1]), b2 = B(el.v[2]);
+  const bool in0 = buried.is_moved(p, el.v[0]), in1 = buried.is_moved(p, el.v[1]),
+             in2 = buried.is_moved(p, el.v[2]);
+  *d = {in0 != in1 || differs(b0, b1, limit), in1 != in2 || differs(b1, b2, limit),
+        in2 != in0 || differs(b2, b0, limit)};
+  if (!((*d)[0] || (*d)[1] || (*d)[2])) {
+    if (!shadow_edges || !holds_shadow_edge(s, buried, p, e, limit) ||
+        element_size(m, e) < min_split_size)
+      return false;
+    *d = {true, true, true};
+    return true;
+  }
+  const float size = element_size(m, e);
+  if (size >= min_split_size) return true;
+  // A contact stays at the smallest size: below it, vertices land on the contact lines, where
+  // the buried probes' first hits differ between the backends (they then split differently).
+  if (in0 != in1 || in1 != in2) return false;
+  const bool c0 = buried.is_covered(p, el.v[0]), c1 = buried.is_covered(p, el.v[1]),
+             c2 = buried.is_covered(p, el.v[2]);
+  if (c0 == c1 && c1 == c2) return false;
+  // Down to the same floor whatever the gap: stopping at the gap's width (a lamp 1 cm below a
+  // ceiling, elements of 2.7 cm) left the living room of tools/real_rooms at 2.89% against
+  // 2.64%, for 6% fewer vertices.
+  return size >= min_split_size * std::exp2(-kCoverSplits);
+}
+
 }  // namespace
 
 bool needs_refinement(const SolverOptions& options, const EnergyBalance& energy,
                       const SceneCaches& scene, const Solution& sol, uint32_t p, bool major_shot) {
   const PolygonMesh& m = sol.mesh.polygons[p];
   const float limit = options.subdivision_threshold * energy.radiosity_scale;
-  const float min_split_size = 2.0f * scene.min_size;
   const bool edges = major_shot && options.midpoints == MidpointRule::Exact;
   bool any = false;
   std::array<bool, 3> d;
   for_each_leaf(m, [&](uint32_t e) {
-    any = any || needs_split(sol, scene.buried, p, e, limit, min_split_size, &d) ||
-          (edges && holds_shadow_edge(sol, scene.buried, p, e, limit) &&
-           element_size(m, e) >= min_split_size);
+    any = any || needs_split(sol, scene.buried, p, e, limit, 2.0f * scene.min_size, edges, &d);
   });
   return any;
 }
@@ -216,7 +220,6 @@ void refine(RefineContext ctx, std::span<const uint32_t> polygons, const Receive
   // minor shots bend nowhere; a building's many need not pay for looking).
   const bool bends = after_shot && all_exact && major;
   std::vector<std::vector<uint32_t>> bent(np);
-  std::vector<uint8_t> bent_flat;
   std::vector<ExactVertex> flat;
   // The first pass looks at every leaf of the polygons as it walks them (a list per polygon
   // would cost a million allocations a shot in a large scene, most polygons never splitting);
@@ -239,12 +242,13 @@ void refine(RefineContext ctx, std::span<const uint32_t> polygons, const Receive
         auto consider = [&](uint32_t e) {
           const uint32_t v[3] = {m.elements[e].v[0], m.elements[e].v[1], m.elements[e].v[2]};
           std::array<bool, 3> d;
-          if (!needs_split(ctx.solution, ctx.scene.buried, p, e, limit, min_split_size, &d)) {
-            if (!bends || element_size(m, e) < min_split_size) return;
+          if (!needs_split(ctx.solution, ctx.scene.buried, p, e, limit, min_split_size, bends,
+                           &d)) {
+            // A corner bent in the last pass splits it too.
             const std::vector<uint32_t>& b = bent[i];
             auto is_in = [&](uint32_t x) { return std::binary_search(b.begin(), b.end(), x); };
-            if (!(is_in(v[0]) || is_in(v[1]) || is_in(v[2])) &&
-                !holds_shadow_edge(ctx.solution, ctx.scene.buried, p, e, limit))
+            if (b.empty() || !(is_in(v[0]) || is_in(v[1]) || is_in(v[2])) ||
+                element_size(m, e) < min_split_size)
               return;
             d = {true, true, true};
           }
@@ -355,18 +359,13 @@ void refine(RefineContext ctx, std::span<const uint32_t> polygons, const Receive
     // 5. Which of them are bent, computed or copied alike (a copy's state is the shot's at the
     //    same point), for the next pass.
     if (bends) {
-      bent_flat.assign(flat.size(), 0);
-      tbb::parallel_for(size_t(0), flat.size(), [&](size_t i) {
-        const ExactVertex& x = flat[i];
-        bent_flat[i] =
-            is_bent(ctx.solution, ctx.scene.buried, x.polygon, x.vertex, x.a, x.b, limit);
-      });
-      for (size_t i = 0, at = 0; i < np; at += exact[i].size(), ++i) {
+      tbb::parallel_for(size_t(0), np, [&](size_t i) {
         bent[i].clear();
-        for (size_t j = 0; j < exact[i].size(); ++j)
-          if (bent_flat[at + j]) bent[i].push_back(exact[i][j].vertex);
+        for (const ExactVertex& x : exact[i])
+          if (is_bent(ctx.solution, ctx.scene.buried, x.polygon, x.vertex, x.a, x.b, limit))
+            bent[i].push_back(x.vertex);
         std::sort(bent[i].begin(), bent[i].end());
-      }
+      });
     }
     ctx.stats.exact_midpoints += flat.size();
     any = false;

@@ -323,12 +323,10 @@ void draw_ray_ends(const ShotSource& src, uint64_t key, float offset, std::vecto
       // end beyond the source's edge may lie behind the wall it meets, and its blocked rays
       // would darken every vertex that sees the edge.
       const uint64_t bits = splitmix64(key * 0x9e3779b97f4a7c15ull + g);
-      // 23 bits each, so that a draw never rounds to 1.
-      float a = (float(bits >> 41) + 0.5f) * 0x1p-23f;
-      float b = (float(bits & 0x7FFFFF) + 0.5f) * 0x1p-23f;
-      if (a + b > 1.0f) a = 1.0f - a, b = 1.0f - b;
-      const Vec3 at = f.point(pick) + src.fine_cell_u[pick] * (a - 1.0f / 3.0f) +
-                      src.fine_cell_v[pick] * (b - 1.0f / 3.0f);
+      // The high 23 bits and the low 23 bits: two draws that never round to 1.
+      const glm::vec2 w = fold_into_triangle(open_unit_draw(bits), open_unit_draw(bits << 41));
+      const Vec3 at = f.point(pick) + src.fine_cell_u[pick] * (w.x - 1.0f / 3.0f) +
+                      src.fine_cell_v[pick] * (w.y - 1.0f / 3.0f);
       const Vec3 end = off_surface(at, f.normal(pick), offset);
       out[g] = end.x, out[n + g] = end.y, out[2 * n + g] = end.z;
     }

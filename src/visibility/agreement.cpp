@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 
+#include "core/planar_geometry.h"
 #include "visibility/segment.h"
 
 namespace rad {
@@ -98,10 +99,10 @@ std::vector<Segment> random_segments(const Hierarchy& h, size_t n, uint32_t seed
   float offset = shadow_offset(h.bounds);
   Vec3 lo = h.bounds.lo - 0.1f * h.bounds.extent(), e = 1.2f * h.bounds.extent();
   auto surface_point = [&](size_t i) {
-    float a = u(rng), b = u(rng);
-    if (a + b > 1.0f) a = 1.0f - a, b = 1.0f - b;
+    const float a = u(rng);
+    const glm::vec2 w = fold_into_triangle(a, u(rng));
     const auto& t = tris.corners[i];
-    return t[2] + a * (t[0] - t[2]) + b * (t[1] - t[2]);
+    return t[2] + w.x * (t[0] - t[2]) + w.y * (t[1] - t[2]);
   };
   std::vector<Segment> out(n);
   for (size_t k = 0; k < n; ++k) {
