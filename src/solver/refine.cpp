@@ -54,8 +54,9 @@ struct EdgeMidpoint {
 // A new midpoint (computed or copied) whose shot gain the straight line between its edge's ends
 // misses by more than this share of the subdivision limit is *bent*: the elements it is a
 // corner of split again though their vertices differ less (and their new midpoints are looked
-// at alike, down to the minimum size), for the shot's light bends there (a penumbra's edge; also
-// a lamp's fall-off close by) and a linear element would smear the bend across its width.
+// at alike, down to the minimum size), for the shot's light bends there (a penumbra's edge) and
+// a linear element would smear the bend across its width. (A lamp's fall-off over a bare floor
+// bends too little to split anything more: the limit has split it already.)
 constexpr float kBendShare = 0.25f;
 
 // Whether midpoint `mid` of edge (a, b) of polygon p is bent by the shot just gathered (its
