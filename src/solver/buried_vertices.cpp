@@ -7,12 +7,23 @@
 
 namespace rad {
 
+namespace {
+// Probes start a hair inside their polygon, as a vertex gathers there (GatherSettings::inset's
+// default; gather.h is downstream of this file): from a vertex on an edge where a wall meets its
+// polygon they would run along the wall's plane, where rounding decides, and the backends
+// could answer differently.
+constexpr float kProbeInset = 1e-4f;
+Vec3 probe_start(const Triangles& t, size_t p, const Vec3& x) {
+  return x + (t.centroid(p) - x) * kProbeInset;
+}
+}  // namespace
+
 Vec3 find_gather_point(const Triangles& t, size_t p, const Vec3& x, const VisibilityBackend& vis,
                        const BuriedProbe& probe_settings, VisibilityStats& stats) {
   const float offset = probe_settings.offset;
   const Vec3 n = t.normal[p];
   const Vec3 b = off_surface(t.centroid(p), n, offset);
-  Vec3 a = off_surface(x, n, offset);
+  Vec3 a = off_surface(probe_start(t, p, x), n, offset);
   // Far enough along the normal to leave any solid: the scene's size (a solid's faces lie in
   // its box, and the probe starts within it).
   const float reach = 2e5f * offset;
@@ -45,7 +56,7 @@ Vec3 find_gather_point(const Triangles& t, size_t p, const Vec3& x, const Visibi
 bool is_covered(const Triangles& t, size_t p, const Vec3& x, const VisibilityBackend& vis,
                 const BuriedProbe& probe, VisibilityStats& stats) {
   const Vec3 n = t.normal[p];
-  const Segment up{off_surface(x, n, probe.offset), n * probe.depth};
+  const Segment up{off_surface(probe_start(t, p, x), n, probe.offset), n * probe.depth};
   uint8_t blocked = 0;
   vis.occluded(std::span<const Segment>(&up, 1), std::span<uint8_t>(&blocked, 1), stats);
   return blocked != 0;

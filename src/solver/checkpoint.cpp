@@ -22,7 +22,7 @@ namespace {
 // order and float layout: a checkpoint resumes on the machine kind that wrote it.
 constexpr char kMagic[8] = {'R', 'A', 'D', 'C', 'K', 'P', 'T', '\n'};
 // The payload's layout version: a checkpoint of another layout is refused.
-constexpr uint32_t kFormat = 11;
+constexpr uint32_t kFormat = 12;
 constexpr size_t kHeader = sizeof kMagic + sizeof(uint32_t) + 3 * sizeof(uint64_t);
 
 struct HistoryRecord {

@@ -30,6 +30,7 @@ PolygonEnergies polygon_energies(const Solution& s, size_t p) {
   });
   const bool one_sign = glm::all(glm::greaterThanEqual(channels, DVec3(0.0))) ||
                         glm::all(glm::lessThanEqual(channels, DVec3(0.0)));
+  e.unshot.channels = channels;
   e.unshot.magnitude =
       one_sign ? std::abs(e.unshot.sum)
                : (std::abs(channels.x) + std::abs(channels.y) + std::abs(channels.z)) / 3.0;
@@ -50,23 +51,30 @@ Fixed128 to_fixed(double e, double scale) {
   return Fixed128(std::nearbyint(std::clamp(x, -most, most)));
 }
 
-// The sums of the absolute and the signed values term(i) gives for i < n. Integer sums are
-// exact, so the parallel reduction's order does not matter.
-using FixedSums = std::array<Fixed128, 2>;
-template <typename Term>
-FixedSums sum_fixed(size_t n, const Term& term) {
+// Fixed-point sums of the N values term(i) gives for each i < n. Integer sums are exact, so the
+// parallel reduction's order does not matter.
+template <size_t N>
+using FixedSums = std::array<Fixed128, N>;
+template <size_t N, typename Term>
+FixedSums<N> sum_fixed(size_t n, const Term& term) {
+  auto add = [](FixedSums<N> a, const FixedSums<N>& b) {
+    for (size_t k = 0; k < N; ++k) a[k] += b[k];
+    return a;
+  };
   return tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, n, 1024), FixedSums{0, 0},
-      [&](const auto& r, FixedSums acc) {
-        for (size_t i = r.begin(); i != r.end(); ++i) {
-          const FixedSums t = term(i);
-          acc[0] += t[0], acc[1] += t[1];
-        }
+      tbb::blocked_range<size_t>(0, n, 1024), FixedSums<N>{},
+      [&](const auto& r, FixedSums<N> acc) {
+        for (size_t i = r.begin(); i != r.end(); ++i) acc = add(acc, term(i));
         return acc;
       },
-      [](FixedSums a, const FixedSums& b) {
-        return FixedSums{a[0] + b[0], a[1] + b[1]};
-      });
+      add);
+}
+
+// A polygon's unshot energy as the five fixed-point terms of the totals: magnitude, signed sum,
+// and the three channels.
+FixedSums<5> unshot_terms(const UnshotEnergy& u, double scale) {
+  return {to_fixed(u.magnitude, scale), to_fixed(u.sum, scale), to_fixed(u.channels.x, scale),
+          to_fixed(u.channels.y, scale), to_fixed(u.channels.z, scale)};
 }
 
 // Area-weighted mean reflectance per channel, from the current (possibly edited) materials.
@@ -164,11 +172,10 @@ double cluster_shooting_energy(const EnergyBalance& e, const Solution& s, const 
 void update_unshot_totals(EnergyBalance& e, const Solution& s, const Clusters& clusters,
                           Ranks* ranks) {
   const double scale = fixed_scale(e);
-  const FixedSums t = sum_fixed(e.unshot_energy.size(), [&](size_t p) {
-    const UnshotEnergy& u = e.unshot_energy[p];
-    return FixedSums{to_fixed(u.magnitude, scale), to_fixed(u.sum, scale)};
-  });
+  const FixedSums<5> t = sum_fixed<5>(
+      e.unshot_energy.size(), [&](size_t p) { return unshot_terms(e.unshot_energy[p], scale); });
   e.unshot_abs_fixed = t[0], e.unshot_signed_fixed = t[1];
+  e.unshot_channel_fixed = {t[2], t[3], t[4]};
   e.cluster_unshot.resize(clusters.size());
   tbb::parallel_for(size_t(0), clusters.size(),
                     [&](size_t c) { e.cluster_unshot[c] = cluster_unshot(e, s, clusters, c); });
@@ -188,12 +195,14 @@ void set_unshot_energies(EnergyBalance& e, const Solution& s, const Clusters& cl
                          std::span<const UnshotEnergy> energies) {
   assert(polygons.size() == energies.size());
   const double scale = fixed_scale(e);
-  const FixedSums d = sum_fixed(polygons.size(), [&](size_t i) {
-    const UnshotEnergy &before = e.unshot_energy[polygons[i]], &after = energies[i];
-    return FixedSums{to_fixed(after.magnitude, scale) - to_fixed(before.magnitude, scale),
-                     to_fixed(after.sum, scale) - to_fixed(before.sum, scale)};
+  const FixedSums<5> d = sum_fixed<5>(polygons.size(), [&](size_t i) {
+    FixedSums<5> after = unshot_terms(energies[i], scale);
+    const FixedSums<5> before = unshot_terms(e.unshot_energy[polygons[i]], scale);
+    for (size_t k = 0; k < 5; ++k) after[k] -= before[k];
+    return after;
   });
   e.unshot_abs_fixed += d[0], e.unshot_signed_fixed += d[1];
+  for (size_t ch = 0; ch < 3; ++ch) e.unshot_channel_fixed[ch] += d[2 + ch];
   std::vector<uint32_t> changed;
   for (size_t i = 0; i < polygons.size(); ++i) {
     e.unshot_energy[polygons[i]] = energies[i];
@@ -208,11 +217,13 @@ void set_unshot_energies(EnergyBalance& e, const Solution& s, const Clusters& cl
 }
 
 void share_unshot_totals(EnergyBalance& e, Ranks* ranks) {
-  Fixed128 sums[2] = {e.unshot_abs_fixed, e.unshot_signed_fixed};
+  Fixed128 sums[5] = {e.unshot_abs_fixed, e.unshot_signed_fixed, e.unshot_channel_fixed[0],
+                      e.unshot_channel_fixed[1], e.unshot_channel_fixed[2]};
   sum_over_ranks(ranks, sums);
   const double scale = fixed_scale(e);
   e.unshot_abs_total = double(sums[0]) / scale;
   e.unshot_signed_total = double(sums[1]) / scale;
+  e.unshot_channel_total = DVec3(double(sums[2]), double(sums[3]), double(sums[4])) / scale;
 }
 
 double ShotBalance::retention() const {
@@ -241,10 +252,8 @@ void exact_energy_sums(const EnergyBalance& e, Ranks* ranks,
   std::vector<Fixed128> fixed(terms.size(), 0);
   for (size_t k = 0; k < terms.size(); ++k) {
     const std::span<const double> t = terms[k];
-    fixed[k] = sum_fixed(t.size(), [&](size_t i) {
-      const Fixed128 x = to_fixed(t[i], scale);
-      return FixedSums{x, x};
-    })[0];
+    fixed[k] =
+        sum_fixed<1>(t.size(), [&](size_t i) { return FixedSums<1>{to_fixed(t[i], scale)}; })[0];
   }
   sum_over_ranks(ranks, fixed);
   for (size_t k = 0; k < terms.size(); ++k) sums[k] = double(fixed[k]) / scale;
@@ -253,6 +262,11 @@ void exact_energy_sums(const EnergyBalance& e, Ranks* ranks,
 float ambient_estimate(const EnergyBalance& e) {
   if (e.total_area <= 0.0) return 0.0f;
   return float(e.unshot_signed_total / e.total_area * e.interreflection);
+}
+
+Vec3 ambient_estimate_channels(const EnergyBalance& e) {
+  if (e.total_area <= 0.0) return Vec3(0.0f);
+  return Vec3(e.unshot_channel_total / e.total_area * interreflection(kept_reflectance(e)));
 }
 
 Vec3 ambient_radiosity(const EnergyBalance& e, const Solution& s, int group) {

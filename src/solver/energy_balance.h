@@ -23,6 +23,7 @@ __extension__ typedef __int128 Fixed128;  // GCC's and clang's 128-bit integer
 /// +x in one and -x in another: a sum near 0, yet light to shoot); else magnitude = |sum|.
 struct UnshotEnergy {
   double sum = 0.0, magnitude = 0.0;
+  DVec3 channels{0.0};  // per channel, signed: what overshooting's ambient is made of
 };
 
 /// What a cluster's polygons hold unshot, summed for choosing the shooter (solver.cpp). With
@@ -64,6 +65,9 @@ struct EnergyBalance {
   /// rank's polygons in fixed point; per cluster, cluster_unshot (0 for other ranks').
   double unshot_abs_total = 0.0, unshot_signed_total = 0.0;
   Fixed128 unshot_abs_fixed = 0, unshot_signed_fixed = 0;
+  /// The same per channel, signed.
+  DVec3 unshot_channel_total{0.0};
+  std::array<Fixed128, 3> unshot_channel_fixed{};
   std::vector<ClusterUnshot> cluster_unshot;
   /// Cohen's interreflection factor 1 / (1 - kept reflectance), mean over the channels, where
   /// the kept reflectance is the mean reflectance over the area less what the clusters' light
@@ -148,6 +152,12 @@ void share_unshot_totals(EnergyBalance& e, Ranks* ranks);
 /// enough to evaluate every shot. What cluster c expects back of it is that times
 /// retention(e, c): a cluster that sees little of the scene receives little of it.
 float ambient_estimate(const EnergyBalance& e);
+
+/// The same per channel, each with its own interreflection factor: what a cluster overshoots
+/// (times its reflectance and retention). A grey estimate would overshoot a scene's weak
+/// channel (the Cornell box's blue, a quarter of its red) by the strong ones' share and leave
+/// it negative unshot energy, which the display's uniform ambient term then spreads.
+Vec3 ambient_estimate_channels(const EnergyBalance& e);
 
 /// Cluster c's retention (EnergyBalance::cluster_retention; 1 until it shoots).
 inline double retention(const EnergyBalance& e, size_t c) {

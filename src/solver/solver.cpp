@@ -141,7 +141,7 @@ ShotSource freeze_source(SolverState& s, size_t c, double energy, double& shot) 
   const bool overshoot = s.options.overshoot;
   if (overshoot) {
     over = s.solution.material_of(clusters.polygons[clusters.first[c]]).reflectance *
-           float(double(ambient_estimate(s.energy)) * retention(s.energy, c));
+           ambient_estimate_channels(s.energy) * float(retention(s.energy, c));
   }
   shot = 0.0;
   for (uint32_t j = clusters.first[c]; j < clusters.first[c + 1]; ++j)

@@ -164,9 +164,10 @@ ShadowError umbra_shot_error(const glm::dmat4& turn, float clear,
   o.penumbra_rays = penumbra_rays;
   const SolverState s = testing::solve_shots(h, *vis, o, 1);
   const SceneDescription local = testing::umbra_scene();
-  const auto& floor = std::find_if(local.objects.begin(), local.objects.end(), [](const auto& o) {
-                        return o.name == "floor";
-                      })->triangles;  // triangles 0 and 1 of the hierarchy
+  const auto& floor =
+      std::find_if(local.objects.begin(), local.objects.end(), [](const auto& object) {
+        return object.name == "floor";
+      })->triangles;  // triangles 0 and 1 of the hierarchy
   const double open =
       testing::kLampEmission * testing::rectangle_factor(-testing::kLampHalf, testing::kLampHalf,
                                                          -testing::kLampHalf, testing::kLampHalf,
