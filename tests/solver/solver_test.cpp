@@ -227,6 +227,35 @@ TEST(Solver, ClosedSceneClustersKeepNearlyAllTheyShoot) {
   EXPECT_NEAR(s.energy.interreflection, closed, 0.1 * closed);
 }
 
+TEST(Solver, OvershootingKeepsAWeakChannelRight) {
+  // A closed box of walls emitting (1, 1, 0.05), reflecting 0.7: every point's radiosity is
+  // E / (1 - rho) in each channel. A grey ambient estimate (the channels' mean) overshoots the
+  // blue channel by the others' share, and the solve ends with blue's unshot energy negative
+  // and its radiosity off by several of its own percent.
+  SceneDescription d;
+  const Vec3 e(1.0f, 1.0f, 0.05f);
+  const float rho = 0.7f;
+  testing::add_closed_box(d, {0, 0, 0}, {1, 1, 1}, Vec3(rho), e);
+  const Hierarchy h = build_hierarchy(d);
+  const auto vis = make_visibility_backend(BackendKind::Embree, h);
+  SolverOptions o;
+  ASSERT_TRUE(o.overshoot);
+  SolverState s = make_solver_state(h, o);
+  solve(s, *vis);
+  ASSERT_LE(s.energy.unshot_fraction(), o.converge);
+  DVec3 sum(0.0);
+  size_t n = 0;
+  for (size_t p = 0; p < s.solution.mesh.polygons.size(); ++p) {
+    for (uint32_t v = 0; v < s.solution.mesh.polygons[p].vertex_count(); ++v, ++n)
+      sum += DVec3(s.solution.radiosity(p, v));
+  }
+  const DVec3 mean = sum / double(n), exact = DVec3(e) / (1.0 - double(rho));
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(mean[c] / exact[c], 1.0, 0.005) << "channel " << c;
+    EXPECT_GT(s.energy.unshot_channel_total[c], -1e-3 * s.energy.emitted_energy) << "channel " << c;
+  }
+}
+
 TEST(Solver, RetentionLowersTheInterreflectionFactorAndIsRestoredExactly) {
   SceneDescription d;
   add_lamp(d, 0.5f);
