@@ -128,45 +128,51 @@ void sum_over_ranks(Ranks* ranks, std::span<Fixed128> sums) {
   }
 }
 
-// r_p of ClusterUnshot: polygon p's mean reflectance times its area.
-double rho_area(const Solution& s, uint32_t p) {
-  return mean_component(s.material_of(p).reflectance) * double(s.hierarchy->triangles.area[p]);
-}
 }  // namespace
 
 ClusterUnshot cluster_unshot(const EnergyBalance& e, const Solution& s, const Clusters& clusters,
                              size_t c) {
   ClusterUnshot k;
-  k.lo = std::numeric_limits<double>::infinity(), k.hi = -k.lo;
+  k.lo = DVec3(std::numeric_limits<double>::infinity()), k.hi = -k.lo;
+  k.rho = DVec3(s.material_of(clusters.polygons[clusters.first[c]]).reflectance);
   for (uint32_t j = clusters.first[c]; j < clusters.first[c + 1]; ++j) {
     const uint32_t p = clusters.polygons[j];
     const UnshotEnergy& u = e.unshot_energy[p];
-    const double r = rho_area(s, p);
+    const double area = double(s.hierarchy->triangles.area[p]);
     k.magnitude += u.magnitude;
-    k.rest += u.magnitude - std::abs(u.sum);
-    if (r > 0.0) {
-      k.sum += u.sum, k.rho_area += r;
-      k.lo = std::min(k.lo, -u.sum / r), k.hi = std::max(k.hi, -u.sum / r);
-    } else {
-      k.rest += std::abs(u.sum);
+    k.area += area;
+    k.sum += u.channels;
+    k.abs += glm::abs(u.channels);
+    for (int ch = 0; ch < 3; ++ch) {
+      if (!(k.rho[ch] > 0.0) || !(area > 0.0)) continue;
+      const double at = -u.channels[ch] / (k.rho[ch] * area);
+      k.lo[ch] = std::min(k.lo[ch], at), k.hi[ch] = std::max(k.hi[ch], at);
     }
   }
   return k;
 }
 
 double cluster_shooting_energy(const EnergyBalance& e, const Solution& s, const Clusters& clusters,
-                               size_t c, double a) {
+                               size_t c, const Vec3& a) {
   const ClusterUnshot& k = e.cluster_unshot[c];
-  if (a >= k.hi) return k.rest + (k.sum + k.rho_area * a);
-  if (a <= k.lo) return k.rest - (k.sum + k.rho_area * a);
   double shoots = 0.0;
-  for (uint32_t j = clusters.first[c]; j < clusters.first[c + 1]; ++j) {
-    const uint32_t p = clusters.polygons[j];
-    // The share changes the sum; what cancels between the channels stays to shoot.
-    const UnshotEnergy& u = e.unshot_energy[p];
-    shoots += std::abs(u.sum + rho_area(s, p) * a) + u.magnitude - std::abs(u.sum);
+  for (int ch = 0; ch < 3; ++ch) {
+    const double x = double(a[ch]), rho = k.rho[ch];
+    if (!(rho > 0.0)) {
+      shoots += k.abs[ch];
+    } else if (x >= k.hi[ch]) {
+      shoots += k.sum[ch] + rho * k.area * x;
+    } else if (x <= k.lo[ch]) {
+      shoots -= k.sum[ch] + rho * k.area * x;
+    } else {
+      for (uint32_t j = clusters.first[c]; j < clusters.first[c + 1]; ++j) {
+        const uint32_t p = clusters.polygons[j];
+        shoots += std::abs(e.unshot_energy[p].channels[ch] +
+                           rho * double(s.hierarchy->triangles.area[p]) * x);
+      }
+    }
   }
-  return shoots;
+  return shoots / 3.0;
 }
 
 void update_unshot_totals(EnergyBalance& e, const Solution& s, const Clusters& clusters,
@@ -259,12 +265,7 @@ void exact_energy_sums(const EnergyBalance& e, Ranks* ranks,
   for (size_t k = 0; k < terms.size(); ++k) sums[k] = double(fixed[k]) / scale;
 }
 
-float ambient_estimate(const EnergyBalance& e) {
-  if (e.total_area <= 0.0) return 0.0f;
-  return float(e.unshot_signed_total / e.total_area * e.interreflection);
-}
-
-Vec3 ambient_estimate_channels(const EnergyBalance& e) {
+Vec3 ambient_estimate(const EnergyBalance& e) {
   if (e.total_area <= 0.0) return Vec3(0.0f);
   return Vec3(e.unshot_channel_total / e.total_area * interreflection(kept_reflectance(e)));
 }

@@ -27,14 +27,18 @@ struct UnshotEnergy {
 };
 
 /// What a cluster's polygons hold unshot, summed for choosing the shooter (solver.cpp). With
-/// overshooting polygon p shoots |u_p + r_p a| + m_p - |u_p|: u_p its signed unshot energy, m_p
-/// its magnitude, r_p its mean reflectance times its area, a the ambient estimate. Where a lies
-/// beyond every polygon's break -u_p / r_p, the sum over the cluster is linear in a.
+/// overshooting at ambient a (per channel, retention included) polygon p shoots the mean over
+/// the channels of |U_pc + rho_c A_p a_c|: U_pc its signed unshot energy in channel c, rho the
+/// cluster's reflectance (a cluster lies in one Pure), A_p its area. In a channel where a_c lies
+/// beyond every polygon's break -U_pc / (rho_c A_p), the sum over the cluster is linear in a_c.
+/// Exact, so a cluster that has just overshot (U_pc = -rho_c A_p a_c) is seen holding nothing.
 struct ClusterUnshot {
-  double magnitude = 0.0;            // sum of m_p: what it shoots without overshooting
-  double sum = 0.0, rho_area = 0.0;  // sums of u_p and r_p over the polygons with r_p > 0
-  double rest = 0.0;                 // sum of the terms that do not depend on a
-  double lo = 0.0, hi = 0.0;         // least and largest break (lo > hi: no polygon has one)
+  double magnitude = 0.0;  // sum of the polygons' magnitudes: what it shoots without overshooting
+  double area = 0.0;       // sum of A_p
+  DVec3 rho{0.0};          // the reflectance
+  DVec3 sum{0.0};          // per channel, sum of U_pc
+  DVec3 abs{0.0};          // per channel, sum of |U_pc|: what a channel of rho_c = 0 shoots
+  DVec3 lo{0.0}, hi{0.0};  // per channel, least and largest break (lo > hi: no polygon)
 };
 
 /// A cluster's shots summed: the energy they carried (each shot's magnitude) and the part of it
@@ -124,10 +128,11 @@ inline UnshotEnergy polygon_unshot_energy(const Solution& solution, size_t p) {
 ClusterUnshot cluster_unshot(const EnergyBalance& e, const Solution& solution,
                              const Clusters& clusters, size_t c);
 
-/// What cluster c shoots with overshooting at ambient a (ClusterUnshot's sum): from
-/// e.cluster_unshot where a lies beyond every break, else polygon by polygon.
+/// What cluster c shoots with overshooting at ambient a (per channel: ambient_estimate times
+/// its retention), mean over the channels: from e.cluster_unshot in a channel where a lies
+/// beyond every break, else polygon by polygon.
 double cluster_shooting_energy(const EnergyBalance& e, const Solution& solution,
-                               const Clusters& clusters, size_t c, double a);
+                               const Clusters& clusters, size_t c, const Vec3& a);
 
 /// Sets the unshot totals, every cluster's energy and the interreflection factor from
 /// e.unshot_energy and the materials after they changed. The totals are summed in fixed point
@@ -148,16 +153,14 @@ void set_unshot_energies(EnergyBalance& e, const Solution& solution, const Clust
 /// The totals from this rank's fixed-point sums (summed over the ranks: collective under MPI).
 void share_unshot_totals(EnergyBalance& e, Ranks* ranks);
 
-/// The ambient term from the per-polygon unshot energies (mean over channels, signed): cheap
-/// enough to evaluate every shot. What cluster c expects back of it is that times
-/// retention(e, c): a cluster that sees little of the scene receives little of it.
-float ambient_estimate(const EnergyBalance& e);
-
-/// The same per channel, each with its own interreflection factor: what a cluster overshoots
-/// (times its reflectance and retention). A grey estimate would overshoot a scene's weak
-/// channel (the Cornell box's blue, a quarter of its red) by the strong ones' share and leave
-/// it negative unshot energy, which the display's uniform ambient term then spreads.
-Vec3 ambient_estimate_channels(const EnergyBalance& e);
+/// The ambient term from the per-polygon unshot energies, per channel (signed), each channel
+/// with its own interreflection factor: cheap enough to evaluate every shot. What cluster c
+/// overshoots is its reflectance times that times retention(e, c) (a cluster that sees little
+/// of the scene receives little of it). A grey estimate (the mean over the channels) would
+/// overshoot a scene's weak channel (the Cornell box's blue, a quarter of its red) by the strong
+/// ones' share and leave it negative unshot energy, which the display's uniform ambient term
+/// then spreads.
+Vec3 ambient_estimate(const EnergyBalance& e);
 
 /// Cluster c's retention (EnergyBalance::cluster_retention; 1 until it shoots).
 inline double retention(const EnergyBalance& e, size_t c) {

@@ -85,13 +85,13 @@ std::optional<Shooter> choose_shooter(const SolverState& s) {
   // held overshoot of all of them grows: a furnished room ended with 42% of its energy unshot
   // after 900 shots.) Its share is what it expects back: the ambient times its retention.
   const bool overshoot = s.options.overshoot;
-  const double amb = overshoot ? ambient_estimate(s.energy) : 0.0;
+  const Vec3 amb = overshoot ? ambient_estimate(s.energy) : Vec3(0.0f);
   const ExpectedCost expected_cost(s);
   const Clusters& clusters = s.scene.clusters;
   // Mostly a pass over the clusters, not the polygons (ClusterUnshot).
   auto shooting = [&](size_t c) {
-    return overshoot ? cluster_shooting_energy(s.energy, s.solution, s.scene.clusters, c,
-                                               amb * retention(s.energy, c))
+    return overshoot ? cluster_shooting_energy(s.energy, s.solution, clusters, c,
+                                               amb * float(retention(s.energy, c)))
                      : s.energy.cluster_unshot[c].magnitude;
   };
   using Best = std::pair<double, int32_t>;  // (score, -index): the larger wins, ties lowest
@@ -102,12 +102,14 @@ std::optional<Shooter> choose_shooter(const SolverState& s) {
           if (!s.ownership.owns_cluster(c)) continue;
           const double cost = expected_cost(c);
           // What a cluster shoots is at most its magnitude plus its share of the ambient (each
-          // polygon's |u + r a| + m - |u| <= m + r |a|), with room for the sums' rounding: one
-          // that cannot win even so is passed over without its polygons (the same choice).
+          // polygon's |U + rho A a| <= |U| + rho A |a| per channel), with room for the sums'
+          // rounding: one that cannot win even so is passed over without its polygons (the same
+          // choice).
           if (overshoot) {
             const ClusterUnshot& u = s.energy.cluster_unshot[c];
-            const double most =
-                (u.magnitude + u.rho_area * std::abs(amb) * retention(s.energy, c)) * (1.0 + 1e-9);
+            const double share =
+                u.area * mean_component(u.rho * DVec3(glm::abs(amb))) * retention(s.energy, c);
+            const double most = (u.magnitude + share) * (1.0 + 1e-9);
             if (Best{most / cost, -int32_t(c)} < b) continue;
           }
           const double e = shooting(c);
@@ -141,7 +143,7 @@ ShotSource freeze_source(SolverState& s, size_t c, double energy, double& shot) 
   const bool overshoot = s.options.overshoot;
   if (overshoot) {
     over = s.solution.material_of(clusters.polygons[clusters.first[c]]).reflectance *
-           ambient_estimate_channels(s.energy) * float(retention(s.energy, c));
+           ambient_estimate(s.energy) * float(retention(s.energy, c));
   }
   shot = 0.0;
   for (uint32_t j = clusters.first[c]; j < clusters.first[c + 1]; ++j)

@@ -80,12 +80,12 @@ TEST(Solver, TheShooterHasTheMostEnergyPerCostOfAllClusters) {
       std::vector<double> costs(s.scene.clusters.size());
       for (double& c : costs) c = std::floor(cost(rng));
       s.shots.cluster_cost = costs;
-      const double amb = ambient_estimate(s.energy);
+      const Vec3 amb = ambient_estimate(s.energy);
       int32_t best = -1;
       double most = 0.0;
       for (size_t c = 0; c < s.scene.clusters.size(); ++c) {
         const double score = cluster_shooting_energy(s.energy, s.solution, s.scene.clusters, c,
-                                                     amb * retention(s.energy, c)) /
+                                                     amb * float(retention(s.energy, c))) /
                              (costs[c] + 1000.0);
         if (score > most) most = score, best = int32_t(c);
       }
