@@ -109,7 +109,9 @@ std::optional<Shooter> choose_shooter(const SolverState& s) {
             const ClusterUnshot& u = s.energy.cluster_unshot[c];
             const double share =
                 u.area * mean_component(u.rho * DVec3(glm::abs(amb))) * retention(s.energy, c);
-            const double most = (u.magnitude + share) * (1.0 + 1e-9);
+            // u.abs, not u.magnitude: the same doubles cluster_shooting_energy sums (the
+            // magnitude comes from float means and may round below them by 1e-8 of itself).
+            const double most = (mean_component(u.abs) + share) * (1.0 + 1e-9);
             if (Best{most / cost, -int32_t(c)} < b) continue;
           }
           const double e = shooting(c);
