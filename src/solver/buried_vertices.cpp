@@ -8,13 +8,8 @@
 namespace rad {
 
 namespace {
-// Probes start a hair inside their polygon, as a vertex gathers there (GatherSettings::inset's
-// default; gather.h is downstream of this file): from a vertex on an edge where a wall meets its
-// polygon they would run along the wall's plane, where rounding decides, and the backends
-// could answer differently.
-constexpr float kProbeInset = 1e-4f;
 Vec3 probe_start(const Triangles& t, size_t p, const Vec3& x) {
-  return x + (t.centroid(p) - x) * kProbeInset;
+  return x + (t.centroid(p) - x) * kGatherInset;
 }
 }  // namespace
 

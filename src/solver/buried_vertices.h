@@ -38,6 +38,12 @@
 
 namespace rad {
 
+/// How far toward its polygon's centroid a point gathers, and the probes below start, as a
+/// fraction of the way (GatherSettings::inset): off the edges, where a wall meeting the polygon
+/// would leave a ray running along the wall's plane to rounding, and the backends could answer
+/// differently.
+constexpr float kGatherInset = 1e-4f;
+
 /// A vertex that gathers elsewhere than at its position.
 struct MovedVertex {
   uint32_t vertex;

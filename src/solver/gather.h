@@ -43,7 +43,7 @@ struct GatherSettings {
   bool shadows = true;
   float cut = 0.0f;  // absolute intensity-cut level (radiosity units)
   float shadow_offset = 0.0f;
-  float inset = 1e-4f;  // fraction of the way to the polygon centroid a point moves
+  float inset = kGatherInset;  // fraction of the way to the polygon centroid a point moves
   /// Penumbra rounds (SolverOptions::penumbra_rays): where a point's rays to a shot's
   /// samples (or to its corners) disagree, this many more rays per sample, each round to other
   /// points of the strata drawn by a hash of the point, and the visibility of each sample their
