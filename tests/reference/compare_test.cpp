@@ -97,6 +97,29 @@ TEST(Compare, ReportsRelativeErrorsPerChannelAndOverall) {
   EXPECT_FALSE(format_report(r).empty());
 }
 
+TEST(Compare, ATexturedPointIsItsTexelOverTheInterpolatedIrradiance) {
+  const Hierarchy h = unit_square();
+  const testing::MeshParts m = split_mesh(h);
+  // Irradiance the field too; points of the first polygon textured, reflecting 0.25 and
+  // emitting 0.1 where they are, the others as their vertices say.
+  const ShadedFacesView faces{m.position, m.radiosity, m.indices, m.face_polygon, m.radiosity};
+  ReferenceSet ref = reference_of(h, 1.0f);
+  std::vector<TexelSurface> texels(ref.points.size());
+  size_t textured = 0;
+  for (size_t i = 0; i < ref.points.size(); ++i) {
+    if (ref.points[i].triangle != 0) continue;
+    texels[i] = {true, Vec3(0.25f), Vec3(0.1f)};
+    ref.values[i].radiosity = 0.1 + 0.25 * DVec3(field(ref.points[i].position));
+    ++textured;
+  }
+  ASSERT_GT(textured, 10u);
+  const ComparisonReport r = compare_to_reference(faces, ref, {}, {}, texels);
+  EXPECT_LT(r.all.worst_error, 1e-6);
+  // Without the irradiance, the vertices' radiosity: the textured points are off.
+  const ComparisonReport plain = compare_to_reference(view(m), ref, {}, {}, texels);
+  EXPECT_GT(plain.all.worst_error, 0.1);
+}
+
 TEST(Compare, FiguresWithoutEmittersLeaveTheirPointsOut) {
   const Hierarchy h = unit_square();
   testing::MeshParts m = split_mesh(h);

@@ -198,11 +198,11 @@ CameraReference render_camera_reference(const Hierarchy& h, const CameraReferenc
                 first[d] = block_sample(j, kFirstDraws[d][0], size_t(kFirstDraws[d][1]),
                                         o.trace.seed, pixel);
               }
-              const Material& mat = tracer.material(hit.triangle);
+              const auto& c = t.corners[size_t(hit.triangle)];
+              const Vec3 p = c[0] + hit.u * (c[1] - c[0]) + hit.v * (c[2] - c[0]);
+              const PathTracer::Surface mat = tracer.surface_at(hit.triangle, p);
               DVec3 b(mat.emission);
               if (max_component(mat.reflectance) > 0.0f) {
-                const auto& c = t.corners[size_t(hit.triangle)];
-                const Vec3 p = c[0] + hit.u * (c[1] - c[0]) + hit.v * (c[2] - c[0]);
                 path_rng.draw_first(first.data(), first.size());
                 b += DVec3(mat.reflectance) * tracer.sample_irradiance(p, normal, path_rng);
                 ++traced;

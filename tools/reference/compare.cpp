@@ -108,10 +108,13 @@ std::string format_figures(const ErrorFigures& r) {
 
 ComparisonReport compare_to_reference(const ShadedFacesView& f, const ReferenceSet& ref,
                                       std::span<const uint8_t> emitting,
-                                      std::span<const uint8_t> buried) {
+                                      std::span<const uint8_t> buried,
+                                      std::span<const TexelSurface> texels) {
   const size_t face_count = f.indices.size() / 3;
   if (f.position.size() != f.radiosity.size() || f.face_polygon.size() != face_count ||
-      ref.values.size() != ref.points.size()) {
+      ref.values.size() != ref.points.size() ||
+      (!f.irradiance.empty() && f.irradiance.size() != f.position.size()) ||
+      (!texels.empty() && texels.size() != ref.points.size())) {
     throw Error("compare_to_reference: array sizes disagree");
   }
   int32_t polygons = 0;
@@ -151,8 +154,14 @@ ComparisonReport compare_to_reference(const ShadedFacesView& f, const ReferenceS
     c.index = i;
     c.triangle = point.triangle;
     c.position = point.position;
-    c.rad = w.x * DVec3(f.radiosity[v[0]]) + w.y * DVec3(f.radiosity[v[1]]) +
-            w.z * DVec3(f.radiosity[v[2]]);
+    if (i < texels.size() && texels[i].textured && !f.irradiance.empty()) {
+      const DVec3 h = w.x * DVec3(f.irradiance[v[0]]) + w.y * DVec3(f.irradiance[v[1]]) +
+                      w.z * DVec3(f.irradiance[v[2]]);
+      c.rad = DVec3(texels[i].emission) + DVec3(texels[i].reflectance) * h;
+    } else {
+      c.rad = w.x * DVec3(f.radiosity[v[0]]) + w.y * DVec3(f.radiosity[v[1]]) +
+              w.z * DVec3(f.radiosity[v[2]]);
+    }
     c.reference = ref.values[i].radiosity;
     c.standard_error = ref.values[i].standard_error;
     c.buried = i < buried.size() && buried[i] != 0;

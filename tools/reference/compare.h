@@ -20,6 +20,16 @@ struct ShadedFacesView {
   std::span<const Vec3> radiosity;
   std::span<const uint32_t> indices;
   std::span<const int32_t> face_polygon;
+  /// Per-vertex irradiance H (may be empty): what a textured point's radiosity is made from.
+  std::span<const Vec3> irradiance = {};
+};
+
+/// What a reference point of a textured polygon reflects and emits, read from its texture at
+/// the point: rad's pictures shade such a point E + rho H with H interpolated over the face, so
+/// the comparison does too (a vertex's radiosity holds its texture filtered over its element).
+struct TexelSurface {
+  bool textured = false;
+  Vec3 reflectance{0.0f}, emission{0.0f};
 };
 
 /// One reference point as rad shows it.
@@ -78,11 +88,14 @@ struct ComparisonReport {
 /// that contains it, interpolates the three vertex radiosities with the point's barycentric
 /// coordinates in that face, and gathers the error figures. `emitting[p]` != 0 marks polygon p
 /// as an emitter (for ComparisonReport::reflecting; may be empty); `buried[i]` != 0 marks
-/// reference point i as inside a solid (for ComparisonReport::visible; may be empty). Throws
-/// rad::Error if a point's polygon has no faces or the view's arrays disagree in size.
+/// reference point i as inside a solid (for ComparisonReport::visible; may be empty);
+/// `texels[i]`, when textured and the faces carry irradiance, makes point i's value
+/// E + rho H (may be empty). Throws rad::Error if a point's polygon has no faces or the view's
+/// arrays disagree in size.
 ComparisonReport compare_to_reference(const ShadedFacesView& faces, const ReferenceSet& reference,
                                       std::span<const uint8_t> emitting = {},
-                                      std::span<const uint8_t> buried = {});
+                                      std::span<const uint8_t> buried = {},
+                                      std::span<const TexelSurface> texels = {});
 
 /// Every point as CSV: index, polygon, x, y, z, rad_r, rad_g, rad_b, ref_r, ref_g, ref_b,
 /// stderr_r, stderr_g, stderr_b, buried (0 or 1).

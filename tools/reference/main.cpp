@@ -37,6 +37,7 @@
 #include "reference/ply_reader.h"
 #include "reference/reference_points.h"
 #include "scene/parser.h"
+#include "solver/texture_factors.h"
 
 namespace {
 
@@ -61,13 +62,26 @@ int compare(const rad::Hierarchy& h, const std::string& reference_path,
       done[v] = 1;
       const Material& m = h.objects[size_t(h.triangles.object[size_t(p)])].material;
       mesh.radiosity[v] += m.reflectance * amb;
+      if (!mesh.irradiance.empty()) mesh.irradiance[v] += amb;
     }
   }
-  const RayScene scene(h.triangles);
+  // Textured points as rad's pictures shade them: the texel's reflectance and emission at the
+  // point, over the interpolated irradiance.
+  std::vector<TexelSurface> texels(ref.points.size());
+  for (size_t i = 0; i < ref.points.size(); ++i) {
+    const size_t p = size_t(ref.points[i].triangle);
+    if (p >= h.triangles.size()) continue;
+    const SceneObject& o = h.objects[size_t(h.triangles.object[p])];
+    if (!is_textured(h.triangles, p, o)) continue;
+    const TextureFactors f = texture_factor(h.triangles, p, o, ref.points[i].position, 0.0f);
+    texels[i] = {true, o.material.reflectance * f.reflectance, o.material.emission * f.emission};
+  }
+  const RayScene scene(h);
   const std::vector<uint8_t> buried =
       buried_points(scene, h.triangles, ref.points, 1e-5f * h.bounds.diagonal());
-  const ComparisonReport r = compare_to_reference(
-      {mesh.position, mesh.radiosity, mesh.indices, polygon}, ref, emitting_polygons(h), buried);
+  const ComparisonReport r =
+      compare_to_reference({mesh.position, mesh.radiosity, mesh.indices, polygon, mesh.irradiance},
+                           ref, emitting_polygons(h), buried, texels);
   std::fputs(format_report(r).c_str(), stdout);
   if (!points_path.empty()) {
     std::ofstream out(points_path);

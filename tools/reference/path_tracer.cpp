@@ -10,6 +10,8 @@
 #include <mutex>
 #include <numbers>
 
+#include "solver/texture_factors.h"
+
 namespace rad {
 
 namespace {
@@ -50,13 +52,17 @@ DVec3 to_d(const Vec3& v) { return DVec3(v); }
 
 PathTracer::PathTracer(const Hierarchy& h, int roulette_depth, bool next_event, int max_bounces)
     : h_(&h),
-      scene_(h.triangles),
+      scene_(h),
       // Far above float rounding of coordinates (~1e-7 of the scene) and far below features.
       offset_(1e-5f * std::max(h.bounds.diagonal(), 1e-20f)),
       roulette_depth_(roulette_depth),
       next_event_(next_event),
       max_bounces_(max_bounces) {
   const Triangles& t = h.triangles;
+  textured_.resize(t.size());
+  for (size_t i = 0; i < t.size(); ++i) {
+    textured_[i] = is_textured(t, i, h.objects[size_t(t.object[i])]) ? 1 : 0;
+  }
   double total = 0.0;
   for (size_t i = 0; i < t.size(); ++i) {
     const double power = double(t.area[i]) * mean_component(material(int32_t(i)).emission);
@@ -76,6 +82,15 @@ PathTracer::PathTracer(const Hierarchy& h, int roulette_depth, bool next_event, 
 
 const Material& PathTracer::material(int32_t triangle) const {
   return h_->objects[size_t(h_->triangles.object[size_t(triangle)])].material;
+}
+
+PathTracer::Surface PathTracer::surface_at(int32_t triangle, const Vec3& x) const {
+  const Material& m = material(triangle);
+  if (!textured_[size_t(triangle)]) return {m.reflectance, m.emission};
+  const size_t p = size_t(triangle);
+  const TextureFactors f =
+      texture_factor(h_->triangles, p, h_->objects[size_t(h_->triangles.object[p])], x, 0.0f);
+  return {m.reflectance * f.reflectance, m.emission * f.emission};
 }
 
 double PathTracer::light_pdf(int32_t tri, double r2, double cos_y) const {
@@ -102,12 +117,14 @@ DVec3 PathTracer::direct(const Vec3& p, const Vec3& n, Pcg32& rng) const {
   const double r = std::sqrt(r2);
   const double cos_x = double(glm::dot(n, d)) / r, cos_y = -double(glm::dot(ny, d)) / r;
   if (cos_x <= 0.0 || cos_y <= 0.0) return DVec3(0.0);
+  const Vec3 emission = surface_at(tri, y).emission;
+  if (max_component(emission) <= 0.0f) return DVec3(0.0);  // a dark texel, or a hole
   const Vec3 from = p + n * offset_, to = y + ny * offset_;
   if (scene_.occluded(from, to - from, 1.0f)) return DVec3(0.0);
   // Irradiance integrand (E / pi) cos_x over the solid-angle pdf of this point.
   const double pdf = light_pdf(tri, r2, cos_y);
   const double weight = power_heuristic(pdf, cos_x / kPi);
-  return to_d(material(tri).emission) * (weight * cos_x / (kPi * pdf));
+  return to_d(emission) * (weight * cos_x / (kPi * pdf));
 }
 
 RayHit PathTracer::first_hit(const Vec3& from, const Vec3& w, float tfar) const {
@@ -135,7 +152,9 @@ DVec3 PathTracer::sample_irradiance(const Vec3& p0, const Vec3& n0, Pcg32& rng) 
     const Vec3& nh = t.normal[size_t(hit.triangle)];
     const float cos_y = -glm::dot(nh, w);
     if (cos_y <= 0.0f) break;  // back face: black
-    const Material& m = material(hit.triangle);
+    const auto& c = t.corners[size_t(hit.triangle)];
+    const Vec3 y = c[0] + hit.u * (c[1] - c[0]) + hit.v * (c[2] - c[0]);
+    const Surface m = surface_at(hit.triangle, y);
     if (area_pdf_[size_t(hit.triangle)] > 0.0) {
       // The emission seen along w, weighted against next-event estimation's chance of it.
       const double cos_x = double(glm::dot(n, w));
@@ -154,15 +173,14 @@ DVec3 PathTracer::sample_irradiance(const Vec3& p0, const Vec3& n0, Pcg32& rng) 
       break;
     }
     throughput *= to_d(m.reflectance) / survive;
-    const auto& c = t.corners[size_t(hit.triangle)];
-    p = c[0] + hit.u * (c[1] - c[0]) + hit.v * (c[2] - c[0]);
+    p = y;
     n = nh;
   }
   return irradiance;
 }
 
 DVec3 PathTracer::sample_radiosity(const ReferencePoint& point, Pcg32& rng) const {
-  const Material& m = material(point.triangle);
+  const Surface m = surface_at(point.triangle, point.position);
   if (max_component(m.reflectance) <= 0.0f) return to_d(m.emission);
   return to_d(m.emission) +
          to_d(m.reflectance) * sample_irradiance(point.position, point.normal, rng);

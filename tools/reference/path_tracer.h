@@ -32,7 +32,8 @@ struct TraceOptions {
 
 /// Path tracer over a hierarchy's triangles with rad's model: Lambertian, one-sided (only the
 /// front face, normal (b - a) x (c - a), emits and reflects; back faces are black), emission
-/// E as exitance, radiance of a surface point L = B / pi.
+/// E as exitance, radiance of a surface point L = B / pi; textures vary reflectance and
+/// emission texel by texel, and rays pass through cut-outs' holes (surface_at, RayScene).
 ///
 /// Method: Kajiya 1986 path tracing ("The Rendering Equation", SIGGRAPH 1986), written for
 /// irradiance H(x) = integral of L_in cos(theta) dw over the hemisphere of x:
@@ -65,6 +66,14 @@ class PathTracer {
   RayHit first_hit(const Vec3& from, const Vec3& w, float tfar) const;
 
   const Material& material(int32_t triangle) const;
+
+  /// What point x of `triangle` reflects and emits: its material's reflectance and emission
+  /// times its texture factors read at x alone (solver/texture_factors.h with no footprint: the
+  /// texel there; nothing in a cut-out's hole), as rad's final pictures read them.
+  struct Surface {
+    Vec3 reflectance{0.0f}, emission{0.0f};
+  };
+  Surface surface_at(int32_t triangle, const Vec3& x) const;
   /// Distance by which ray origins leave their surface (a fraction of the scene's diagonal).
   float offset() const { return offset_; }
 
@@ -76,6 +85,7 @@ class PathTracer {
 
   const Hierarchy* h_;
   RayScene scene_;
+  std::vector<uint8_t> textured_;  // per triangle: is_textured (solver/texture_factors.h)
   float offset_;
   int roulette_depth_;
   bool next_event_;

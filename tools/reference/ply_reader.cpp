@@ -18,6 +18,12 @@ PlyMesh read_radiosity_ply(const std::string& path) {
     mesh.position.emplace_back((*c[0])[v], (*c[1])[v], (*c[2])[v]);
     mesh.radiosity.emplace_back((*c[3])[v], (*c[4])[v], (*c[5])[v]);
   }
+  if (d.vertex.count("irradiance_r") && d.vertex.count("irradiance_g") &&
+      d.vertex.count("irradiance_b")) {
+    const std::vector<float>&r = d.vertex.at("irradiance_r"), &g = d.vertex.at("irradiance_g"),
+          &b = d.vertex.at("irradiance_b");
+    for (size_t v = 0; v < d.vertex_count; ++v) mesh.irradiance.emplace_back(r[v], g[v], b[v]);
+  }
   for (size_t f = 0; f + 1 < d.face_first.size(); ++f) {
     const uint32_t n = d.face_first[f + 1] - d.face_first[f];
     if (n != 3)

@@ -3,17 +3,47 @@
 #include <embree3/rtcore.h>
 #include <fmt/format.h>
 
+#include <array>
+#include <cmath>
 #include <limits>
 #include <vector>
 
 #include "core/error.h"
+#include "scene/texture.h"
 
 namespace rad {
+
+namespace {
+
+// The cut-out triangles' masks and texture coordinates, for the geometry's filter (its user
+// data): per triangle, its mask (null: opaque throughout).
+struct Cutouts {
+  std::vector<const AlphaMask*> mask;
+  std::vector<std::array<Vec2, 3>> uv;
+};
+
+// Rejects a hit on a cut-out triangle where its mask is a hole, at the texture coordinates of
+// Embree's barycentrics (u weights corner b, v corner c).
+void through_holes(const RTCFilterFunctionNArguments* args) {
+  const auto* c = static_cast<const Cutouts*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const unsigned t = RTCHitN_primID(args->hit, args->N, i);
+    const AlphaMask* mask = c->mask[t];
+    if (!mask) continue;
+    const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+    const std::array<Vec2, 3>& uv = c->uv[t];
+    if (!opaque_at(*mask, uv[0] * (1.0f - u - v) + uv[1] * u + uv[2] * v)) args->valid[i] = 0;
+  }
+}
+
+}  // namespace
 
 struct RayScene::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
   std::vector<Vec3> normals;  // per triangle, for the front-faces-only filter
+  Cutouts cutouts;
 
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
@@ -25,8 +55,21 @@ struct RayScene::Impl {
   }
 };
 
-RayScene::RayScene(const Triangles& triangles) : impl_(std::make_unique<Impl>()) {
+RayScene::RayScene(const Hierarchy& h) : impl_(std::make_unique<Impl>()) {
+  const Triangles& triangles = h.triangles;
   impl_->normals = triangles.normal;
+  bool any_cutout = false;
+  for (size_t i = 0; i < triangles.size() && i < triangles.uv.size(); ++i) {
+    const AlphaMask& mask = h.objects[size_t(triangles.object[i])].cutout;
+    if (!mask || !std::isfinite(triangles.uv[i][0].x)) continue;
+    if (!any_cutout) {
+      impl_->cutouts.mask.assign(triangles.size(), nullptr);
+      impl_->cutouts.uv.assign(triangles.size(), {});
+      any_cutout = true;
+    }
+    impl_->cutouts.mask[i] = &mask;
+    impl_->cutouts.uv[i] = triangles.uv[i];
+  }
   FlushDenormals denormals;
   impl_->device = rtcNewDevice(nullptr);
   if (!impl_->device) {
@@ -51,6 +94,11 @@ RayScene::RayScene(const Triangles& triangles) : impl_(std::make_unique<Impl>())
       vertices[9 * i + 3 * k + 2] = p.z;
       indices[3 * i + size_t(k)] = unsigned(3 * i + size_t(k));
     }
+  }
+  if (any_cutout) {
+    rtcSetGeometryUserData(g, &impl_->cutouts);
+    rtcSetGeometryIntersectFilterFunction(g, through_holes);
+    rtcSetGeometryOccludedFilterFunction(g, through_holes);
   }
   rtcCommitGeometry(g);
   rtcAttachGeometry(impl_->scene, g);

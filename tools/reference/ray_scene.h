@@ -36,12 +36,15 @@ struct RayHit {
   float u = 0.0f, v = 0.0f;
 };
 
-/// One Embree BVH over all triangles (triangle index = primitive id), both faces hit.
+/// One Embree BVH over all triangles of a hierarchy (triangle index = primitive id), both faces
+/// hit. A triangle of a cut-out Pure (an alpha mask, and texture coordinates) is met only where
+/// its mask is opaque, the test rad's visibility backends make (scene/texture.h opaque_at).
 /// Immutable after construction; safe to query from many threads (each under FlushDenormals).
 class RayScene {
  public:
-  /// Throws rad::Error if Embree fails.
-  explicit RayScene(const Triangles& triangles);
+  /// Keeps pointers into `h`'s objects (their masks), which must outlive the scene. Throws
+  /// rad::Error if Embree fails.
+  explicit RayScene(const Hierarchy& h);
   ~RayScene();
   RayScene(const RayScene&) = delete;
   RayScene& operator=(const RayScene&) = delete;
