@@ -33,12 +33,22 @@ Vec3 find_gather_point(const Triangles& t, size_t p, const Vec3& x, const Visibi
     // Met from the front: a wall between the vertex and the centroid, the vertex outside it.
     if (!(glm::dot(hit.normal, probe.direction) > 0.0f)) break;
     // Met from behind, it may still be a face grazed at its edge (the way passes a box's
-    // corner): inside, the way straight out along the normal meets a face from behind too.
+    // corner): inside, the way straight out along the normal meets a face from behind too, or
+    // the way back does. Either may leave the solid where another's face lies coplanar with its
+    // own, back to back (a shelf board's end butting against the side panel's face: the board's
+    // end and the panel's face are one plane), and the first of two faces at one distance may be
+    // the other's, met from the front; the other way then tells.
+    const float len = glm::length(probe.direction);
     const Segment up{a, n * reach};
     const SegmentHit above = vis.first_hit(up, stats);
-    if (!above.hit || !(glm::dot(above.normal, n) > 0.0f)) break;
+    bool inside = above.hit && glm::dot(above.normal, n) > 0.0f;
+    if (!inside) {
+      const Segment back{a, probe.direction * (-reach / len)};
+      const SegmentHit behind = vis.first_hit(back, stats);
+      inside = behind.hit && glm::dot(behind.normal, back.direction) > 0.0f;
+    }
+    if (!inside) break;
     // From behind: the vertex is inside; it moves just past that face, then looks again.
-    const float len = glm::length(probe.direction);
     const float past = std::min(1.0f, hit.t + 4.0f * offset / len);
     a = a + probe.direction * past;
     moved = true;

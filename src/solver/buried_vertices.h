@@ -9,7 +9,8 @@
 // visible part of its elements continues to at the contact line (as the discontinuity meshing
 // of Baum et al., "Making radiosity usable", SIGGRAPH 1991, splits surfaces where they
 // intersect, without the splitting). A vertex is inside a solid when the first surface met on
-// the way from it towards its polygon's centroid, just off the polygon, is met from behind: a
+// the way from it towards its polygon's centroid, just off the polygon, is met from behind (and
+// so is the first met straight out along its normal or back the other way): a
 // vertex beyond a wall (a floor running under it into the next room) meets the wall's front and
 // stays where it is.
 //

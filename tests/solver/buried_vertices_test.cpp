@@ -67,6 +67,26 @@ TEST_P(BuriedVertexTest, AVertexInsideASolidGathersJustOutsideIt) {
   }
 }
 
+// A box stands on the board, another on the box: the upper box's bottom and the lower box's top
+// are one plane, back to back, and the upper one's triangles come first, so the way straight up
+// from inside the lower box meets the upper box's bottom first, from the front. A vertex of the
+// board under the lower box is inside it all the same (the way back from its probe leaves the
+// box through a face met from behind) and gathers just past the box's side.
+TEST_P(BuriedVertexTest, AVertexUnderABoxWithAnotherOnTopGathersBesideIt) {
+  const Hierarchy h = board_and([](SceneDescription& d) {
+    add_solid_box(d, "upper", {0.3f, 0.35f, 0.2f}, {0.55f, 0.7f, 0.4f});
+    add_solid_box(d, "lower", {0.3f, 0.35f, 0.0f}, {0.55f, 0.7f, 0.2f});
+  });
+  const auto vis = make_visibility_backend(GetParam(), h);
+  const float offset = shadow_offset(h.bounds);
+  VisibilityStats stats;
+  const Vec3 x(0.4f, 0.6f, 0.0f);  // on triangle 0, whose centroid (2/3, 1/3) lies beside the box
+  const Vec3 at = find_gather_point(h.triangles, 0, x, *vis, {offset, 1.0f}, stats);
+  EXPECT_GT(at.x, 0.55f);
+  EXPECT_LT(at.x, 0.55f + 20.0f * offset);
+  EXPECT_NEAR(at.z, 0.0f, 1e-6f);
+}
+
 // The board runs under a wall 2 cm thick at x = 0.5 into the next room: its corners beyond the
 // wall are outside every solid (the probe meets the wall's front) and stay where they are.
 TEST_P(BuriedVertexTest, AVertexBeyondAWallStaysWhereItIs) {
