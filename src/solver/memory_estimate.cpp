@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "mesh/subdivide.h"
@@ -28,7 +29,8 @@ double worst_case_growth_bytes(const SolverState& s) {
         for (size_t p = r.begin(); p < r.end(); ++p) {
           const PolygonMesh& m = s.solution.mesh.polygons[p];
           for_each_leaf(m, [&](uint32_t e) {
-            const float size = element_size(m, e);
+            // A sliver splits by its longest edge (refine.cpp split_size).
+            const float size = std::max(element_size(m, e), longest_edge(m, e) * float(M_SQRT1_2));
             if (!(size >= split_size)) return;
             const double d = std::floor(std::log2(double(size) / double(split_size))) + 1.0;
             const double side = std::exp2(d);                         // edge segments per side

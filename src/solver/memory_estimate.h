@@ -7,9 +7,11 @@
 namespace rad {
 
 /// Bytes the mesh would grow by if every leaf were split as far as min_size allows (a split
-/// needs the longest edge >= 2 min_size, so a leaf of longest edge L splits d = floor(log2(L /
-/// (2 min_size))) + 1 levels deep): vertex tables, elements and midpoint maps, with the slack of
-/// growing vectors. An upper bound; real solves split where the light changes, a small part.
+/// needs a size L >= 2 min_size, L the larger of element_size and a sliver's longest edge over
+/// sqrt 2, so a leaf splits d = floor(log2(L / (2 min_size))) + 1 levels deep): vertex tables,
+/// elements and midpoint maps, with the slack of growing vectors. An upper bound but for the
+/// splits below min_size at the edges of covers; real solves split where the light changes, a
+/// small part.
 double worst_case_growth_bytes(const SolverState& s);
 
 /// Bytes one logged shot of cluster c keeps (its samples and fine samples; solver_state.h).
