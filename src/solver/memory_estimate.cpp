@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "mesh/subdivide.h"
 
@@ -30,7 +31,8 @@ double worst_case_growth_bytes(const SolverState& s) {
           const PolygonMesh& m = s.solution.mesh.polygons[p];
           for_each_leaf(m, [&](uint32_t e) {
             // A sliver splits by its longest edge (refine.cpp split_size).
-            const float size = std::max(element_size(m, e), longest_edge(m, e) * float(M_SQRT1_2));
+            const float size = std::max(element_size(m, e),
+                                        longest_edge(m, e) * (std::numbers::sqrt2_v<float> * 0.5f));
             if (!(size >= split_size)) return;
             const double d = std::floor(std::log2(double(size) / double(split_size))) + 1.0;
             const double side = std::exp2(d);                         // edge segments per side

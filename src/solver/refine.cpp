@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <tuple>
 
 #include "mesh/subdivide.h"
@@ -108,7 +109,7 @@ float split_size(const PolygonMesh& m, uint32_t e, const std::array<bool, 3>& d)
       longest =
           std::max(longest, glm::length(m.positions[el.v[(k + 1) % 3]] - m.positions[el.v[k]]));
   }
-  return std::max(element_size(m, e), longest * float(M_SQRT1_2));
+  return std::max(element_size(m, e), longest * (std::numbers::sqrt2_v<float> * 0.5f));
 }
 
 // Whether element e of polygon p (mesh m, vertex states vs) is to be split: its vertices'

@@ -200,7 +200,7 @@ CameraReference render_camera_reference(const Hierarchy& h, const CameraReferenc
               }
               const auto& c = t.corners[size_t(hit.triangle)];
               const Vec3 p = c[0] + hit.u * (c[1] - c[0]) + hit.v * (c[2] - c[0]);
-              const PathTracer::Surface mat = tracer.surface_at(hit.triangle, p);
+              const TexelSurface mat = tracer.surface_at(hit.triangle, p);
               DVec3 b(mat.emission);
               if (max_component(mat.reflectance) > 0.0f) {
                 path_rng.draw_first(first.data(), first.size());

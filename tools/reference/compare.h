@@ -25,8 +25,9 @@ struct ShadedFacesView {
 };
 
 /// What a reference point of a textured polygon reflects and emits, read from its texture at
-/// the point: rad's pictures shade such a point E + rho H with H interpolated over the face, so
-/// the comparison does too (a vertex's radiosity holds its texture filtered over its element).
+/// the point: the comparison takes E + rho H there, H interpolated from the face's vertices, as
+/// rad's pictures read a texture at the point rather than filtered over an element (a vertex's
+/// radiosity holds its texture filtered over its element).
 struct TexelSurface {
   bool textured = false;
   Vec3 reflectance{0.0f}, emission{0.0f};

@@ -37,7 +37,6 @@
 #include "reference/ply_reader.h"
 #include "reference/reference_points.h"
 #include "scene/parser.h"
-#include "solver/texture_factors.h"
 
 namespace {
 
@@ -65,16 +64,21 @@ int compare(const rad::Hierarchy& h, const std::string& reference_path,
       if (!mesh.irradiance.empty()) mesh.irradiance[v] += amb;
     }
   }
-  // Textured points as rad's pictures shade them: the texel's reflectance and emission at the
-  // point, over the interpolated irradiance.
+  // Textured points: the texel's reflectance and emission at the point, over the irradiance
+  // interpolated from rad's vertices.
   std::vector<TexelSurface> texels(ref.points.size());
+  size_t textured = 0;
   for (size_t i = 0; i < ref.points.size(); ++i) {
     const size_t p = size_t(ref.points[i].triangle);
     if (p >= h.triangles.size()) continue;
-    const SceneObject& o = h.objects[size_t(h.triangles.object[p])];
-    if (!is_textured(h.triangles, p, o)) continue;
-    const TextureFactors f = texture_factor(h.triangles, p, o, ref.points[i].position, 0.0f);
-    texels[i] = {true, o.material.reflectance * f.reflectance, o.material.emission * f.emission};
+    texels[i] = surface_at(h, p, ref.points[i].position);
+    textured += texels[i].textured ? 1 : 0;
+  }
+  if (textured > 0 && mesh.irradiance.empty()) {
+    std::fprintf(stderr,
+                 "warning: %s has no irradiance_r/g/b: its %zu textured points are compared by "
+                 "their vertices' radiosity, the texture filtered over each element\n",
+                 mesh_path.c_str(), textured);
   }
   const RayScene scene(h);
   const std::vector<uint8_t> buried =

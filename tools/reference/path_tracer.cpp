@@ -84,13 +84,20 @@ const Material& PathTracer::material(int32_t triangle) const {
   return h_->objects[size_t(h_->triangles.object[size_t(triangle)])].material;
 }
 
-PathTracer::Surface PathTracer::surface_at(int32_t triangle, const Vec3& x) const {
-  const Material& m = material(triangle);
-  if (!textured_[size_t(triangle)]) return {m.reflectance, m.emission};
-  const size_t p = size_t(triangle);
-  const TextureFactors f =
-      texture_factor(h_->triangles, p, h_->objects[size_t(h_->triangles.object[p])], x, 0.0f);
-  return {m.reflectance * f.reflectance, m.emission * f.emission};
+TexelSurface surface_at(const Hierarchy& h, size_t tri, const Vec3& x) {
+  const SceneObject& o = h.objects[size_t(h.triangles.object[tri])];
+  if (!is_textured(h.triangles, tri, o))
+    return {false, o.material.reflectance, o.material.emission};
+  const TextureFactors f = texture_factor(h.triangles, tri, o, x, 0.0f);
+  return {true, o.material.reflectance * f.reflectance, o.material.emission * f.emission};
+}
+
+TexelSurface PathTracer::surface_at(int32_t triangle, const Vec3& x) const {
+  if (!textured_[size_t(triangle)]) {
+    const Material& m = material(triangle);
+    return {false, m.reflectance, m.emission};
+  }
+  return rad::surface_at(*h_, size_t(triangle), x);
 }
 
 double PathTracer::light_pdf(int32_t tri, double r2, double cos_y) const {
@@ -154,7 +161,7 @@ DVec3 PathTracer::sample_irradiance(const Vec3& p0, const Vec3& n0, Pcg32& rng) 
     if (cos_y <= 0.0f) break;  // back face: black
     const auto& c = t.corners[size_t(hit.triangle)];
     const Vec3 y = c[0] + hit.u * (c[1] - c[0]) + hit.v * (c[2] - c[0]);
-    const Surface m = surface_at(hit.triangle, y);
+    const TexelSurface m = surface_at(hit.triangle, y);
     if (area_pdf_[size_t(hit.triangle)] > 0.0) {
       // The emission seen along w, weighted against next-event estimation's chance of it.
       const double cos_x = double(glm::dot(n, w));
@@ -180,7 +187,7 @@ DVec3 PathTracer::sample_irradiance(const Vec3& p0, const Vec3& n0, Pcg32& rng) 
 }
 
 DVec3 PathTracer::sample_radiosity(const ReferencePoint& point, Pcg32& rng) const {
-  const Surface m = surface_at(point.triangle, point.position);
+  const TexelSurface m = surface_at(point.triangle, point.position);
   if (max_component(m.reflectance) <= 0.0f) return to_d(m.emission);
   return to_d(m.emission) +
          to_d(m.reflectance) * sample_irradiance(point.position, point.normal, rng);

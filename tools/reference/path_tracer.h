@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "hierarchy/hierarchy.h"
+#include "reference/compare.h"
 #include "reference/ray_scene.h"
 #include "reference/reference_set.h"
 #include "reference/rng.h"
@@ -67,13 +68,8 @@ class PathTracer {
 
   const Material& material(int32_t triangle) const;
 
-  /// What point x of `triangle` reflects and emits: its material's reflectance and emission
-  /// times its texture factors read at x alone (solver/texture_factors.h with no footprint: the
-  /// texel there; nothing in a cut-out's hole), as rad's final pictures read them.
-  struct Surface {
-    Vec3 reflectance{0.0f}, emission{0.0f};
-  };
-  Surface surface_at(int32_t triangle, const Vec3& x) const;
+  /// rad::surface_at of the tracer's hierarchy, knowing which triangles are textured.
+  TexelSurface surface_at(int32_t triangle, const Vec3& x) const;
   /// Distance by which ray origins leave their surface (a fraction of the scene's diagonal).
   float offset() const { return offset_; }
 
@@ -94,6 +90,12 @@ class PathTracer {
   std::vector<double> emitter_cdf_;  // by power (area x mean emission), last = 1
   std::vector<double> area_pdf_;     // per triangle: P(chosen) / area; 0 for non-emitters
 };
+
+/// What point x of triangle `tri` of `h` reflects and emits: its material's reflectance and
+/// emission times its texture factors read at x alone (solver/texture_factors.h with no
+/// footprint: the texel there; nothing in a cut-out's hole); `textured` when it has any
+/// (is_textured), else the material's.
+TexelSurface surface_at(const Hierarchy& h, size_t tri, const Vec3& x);
 
 /// What estimate_radiosity did.
 struct TraceStats {
