@@ -19,6 +19,8 @@ inline float max_component(const Vec3& v) { return glm::max(v.x, glm::max(v.y, v
 
 /// Mean of the three components (a colour's grey level).
 inline float mean_component(const Vec3& v) { return (v.x + v.y + v.z) * (1.0f / 3.0f); }
+/// The same in double: a double vector would otherwise convert to float and round by 6e-8.
+inline double mean_component(const DVec3& v) { return (v.x + v.y + v.z) / 3.0; }
 
 /// splitmix64 (Steele, Lea and Flood 2014): 64 well-mixed bits of a key, the same on every run,
 /// thread and rank; what every deterministic draw of the project is made from.

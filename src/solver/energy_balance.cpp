@@ -139,7 +139,6 @@ ClusterUnshot cluster_unshot(const EnergyBalance& e, const Solution& s, const Cl
     const uint32_t p = clusters.polygons[j];
     const UnshotEnergy& u = e.unshot_energy[p];
     const double area = double(s.hierarchy->triangles.area[p]);
-    k.magnitude += u.magnitude;
     k.area += area;
     k.sum += u.channels;
     k.abs += glm::abs(u.channels);

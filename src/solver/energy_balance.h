@@ -33,11 +33,11 @@ struct UnshotEnergy {
 /// beyond every polygon's break -U_pc / (rho_c A_p), the sum over the cluster is linear in a_c.
 /// Exact, so a cluster that has just overshot (U_pc = -rho_c A_p a_c) is seen holding nothing.
 struct ClusterUnshot {
-  double magnitude = 0.0;  // sum of the polygons' magnitudes: what it shoots without overshooting
   double area = 0.0;       // sum of A_p
   DVec3 rho{0.0};          // the reflectance
   DVec3 sum{0.0};          // per channel, sum of U_pc
-  DVec3 abs{0.0};          // per channel, sum of |U_pc|: what a channel of rho_c = 0 shoots
+  DVec3 abs{0.0};          // per channel, sum of |U_pc|: what a channel of rho_c = 0 shoots,
+                           // and (their mean) what the cluster shoots without overshooting
   DVec3 lo{0.0}, hi{0.0};  // per channel, least and largest break (lo > hi: no polygon)
 };
 

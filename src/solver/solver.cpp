@@ -92,7 +92,7 @@ std::optional<Shooter> choose_shooter(const SolverState& s) {
   auto shooting = [&](size_t c) {
     return overshoot ? cluster_shooting_energy(s.energy, s.solution, clusters, c,
                                                amb * float(retention(s.energy, c)))
-                     : s.energy.cluster_unshot[c].magnitude;
+                     : mean_component(s.energy.cluster_unshot[c].abs);
   };
   using Best = std::pair<double, int32_t>;  // (score, -index): the larger wins, ties lowest
   const Best found = tbb::parallel_reduce(
@@ -109,8 +109,7 @@ std::optional<Shooter> choose_shooter(const SolverState& s) {
             const ClusterUnshot& u = s.energy.cluster_unshot[c];
             const double share =
                 u.area * mean_component(u.rho * DVec3(glm::abs(amb))) * retention(s.energy, c);
-            // u.abs, not u.magnitude: the same doubles cluster_shooting_energy sums (the
-            // magnitude comes from float means and may round below them by 1e-8 of itself).
+            // The channels' absolute sums: the doubles cluster_shooting_energy adds.
             const double most = (mean_component(u.abs) + share) * (1.0 + 1e-9);
             if (Best{most / cost, -int32_t(c)} < b) continue;
           }
