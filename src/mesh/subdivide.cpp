@@ -1,7 +1,9 @@
 #include "mesh/subdivide.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <numbers>
 
 namespace rad {
 
@@ -37,6 +39,17 @@ float longest_edge(const PolygonMesh& p, uint32_t e) {
 
 float element_size(const PolygonMesh& p, uint32_t e) {
   return std::sqrt(2.0f * p.elements[e].area);
+}
+
+float split_size(const PolygonMesh& p, uint32_t e, const std::array<bool, 3>& along) {
+  const Element& el = p.elements[e];
+  float longest = 0.0f;
+  for (size_t k = 0; k < 3; ++k) {
+    if (along[k])
+      longest =
+          std::max(longest, glm::length(p.positions[el.v[(k + 1) % 3]] - p.positions[el.v[k]]));
+  }
+  return std::max(element_size(p, e), longest * (std::numbers::sqrt2_v<float> * 0.5f));
 }
 
 }  // namespace rad

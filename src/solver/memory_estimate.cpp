@@ -3,9 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
-#include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "mesh/subdivide.h"
 
@@ -21,7 +19,7 @@ constexpr double kMidpointBytes = 48.0;
 }  // namespace
 
 double worst_case_growth_bytes(const SolverState& s) {
-  const float split_size = 2.0f * s.scene.min_size;
+  const float min_split = 2.0f * s.scene.min_size;
   // With light groups a vertex has a state per group too.
   const double group_bytes = double(s.solution.group_count) * sizeof(VertexState) * kSlack;
   return tbb::parallel_reduce(
@@ -30,11 +28,9 @@ double worst_case_growth_bytes(const SolverState& s) {
         for (size_t p = r.begin(); p < r.end(); ++p) {
           const PolygonMesh& m = s.solution.mesh.polygons[p];
           for_each_leaf(m, [&](uint32_t e) {
-            // A sliver splits by its longest edge (refine.cpp split_size).
-            const float size = std::max(element_size(m, e),
-                                        longest_edge(m, e) * (std::numbers::sqrt2_v<float> * 0.5f));
-            if (!(size >= split_size)) return;
-            const double d = std::floor(std::log2(double(size) / double(split_size))) + 1.0;
+            const float size = split_size(m, e);
+            if (!(size >= min_split)) return;
+            const double d = std::floor(std::log2(double(size) / double(min_split))) + 1.0;
             const double side = std::exp2(d);                         // edge segments per side
             const double vertices = (side + 1) * (side + 2) / 2 - 3;  // all new
             const double elements = (std::exp2(2 * d + 2) - 1) / 3 - 1;

@@ -7,8 +7,8 @@
 namespace rad {
 
 /// Bytes the mesh would grow by if every leaf were split as far as min_size allows (a split
-/// needs a size L >= 2 min_size, L the larger of element_size and a sliver's longest edge over
-/// sqrt 2, so a leaf splits d = floor(log2(L / (2 min_size))) + 1 levels deep): vertex tables,
+/// needs a size L >= 2 min_size, L its split_size with every edge (mesh/subdivide.h), so a
+/// leaf splits d = floor(log2(L / (2 min_size))) + 1 levels deep): vertex tables,
 /// elements and midpoint maps, with the slack of growing vectors. An upper bound but for the
 /// splits below min_size at the edges of covers; real solves split where the light changes, a
 /// small part.

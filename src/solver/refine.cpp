@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
 #include <tuple>
 
 #include "mesh/subdivide.h"
@@ -95,23 +94,6 @@ bool holds_shadow_edge(const Solution& s, const BuriedVertices& buried, uint32_t
   return dark && lit;
 }
 
-// The size element e of mesh m splits by, its light differing along the edges `d` names (01, 12,
-// 20): element_size, or the longest of those edges over sqrt 2 (a right isosceles triangle's
-// hypotenuse over its legs) when larger. A sliver interpolates its light over its length, not
-// over the width its area gives: the real models' slivers 24 cm long and 9 mm wide, across a
-// window's shadow edge, read 1.39 in the middle where the path tracer gives 0.62, and were too
-// small by area to split (tools/bench_rooms bedroom_3_gap).
-float split_size(const PolygonMesh& m, uint32_t e, const std::array<bool, 3>& d) {
-  const Element& el = m.elements[e];
-  float longest = 0.0f;
-  for (int k = 0; k < 3; ++k) {
-    if (d[size_t(k)])
-      longest =
-          std::max(longest, glm::length(m.positions[el.v[(k + 1) % 3]] - m.positions[el.v[k]]));
-  }
-  return std::max(element_size(m, e), longest * (std::numbers::sqrt2_v<float> * 0.5f));
-}
-
 // Whether element e of polygon p (mesh m, vertex states vs) is to be split: its vertices'
 // radiosities differ by more than `limit`, or it crosses into a solid (some of its vertices
 // buried, some not: its light to shoot falls to nothing across it, buried_vertices.h), or,
@@ -132,7 +114,7 @@ bool needs_split(const Solution& s, const BuriedVertices& buried, uint32_t p, ui
         in2 != in0 || differs(b2, b0, limit)};
   if (!((*d)[0] || (*d)[1] || (*d)[2])) {
     if (!shadow_edges || !holds_shadow_edge(s, buried, p, e, limit) ||
-        split_size(m, e, {true, true, true}) < min_split_size)
+        split_size(m, e) < min_split_size)
       return false;
     *d = {true, true, true};
     return true;
@@ -267,7 +249,7 @@ void refine(RefineContext ctx, std::span<const uint32_t> polygons, const Receive
             const std::vector<uint32_t>& b = bent[i];
             auto is_in = [&](uint32_t x) { return std::binary_search(b.begin(), b.end(), x); };
             if (b.empty() || !(is_in(v[0]) || is_in(v[1]) || is_in(v[2])) ||
-                split_size(m, e, {true, true, true}) < min_split_size)
+                split_size(m, e) < min_split_size)
               return;
             d = {true, true, true};
           }

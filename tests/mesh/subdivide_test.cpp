@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "mesh_fixtures.h"
 
 namespace rad {
@@ -49,6 +51,21 @@ TEST(Subdivide, NeighboursShareTheMidpointOfTheirCommonEdge) {
 TEST(Subdivide, LongestEdge) {
   PolygonMesh p = testing::one_polygon({0, 0, 0}, {3, 0, 0}, {0, 4, 0});
   EXPECT_FLOAT_EQ(longest_edge(p, 0), 5.0f);
+}
+
+TEST(Subdivide, ASliverSplitsByTheLengthItsLightDiffersAlong) {
+  // A right isosceles triangle: its size by area, whichever edges differ.
+  const PolygonMesh square_half = testing::one_polygon({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  EXPECT_FLOAT_EQ(element_size(square_half, 0), 1.0f);
+  EXPECT_FLOAT_EQ(split_size(square_half, 0), 1.0f);
+  // A strip 24 long and 0.9 wide (edges 01: 24, 12: the hypotenuse, 20: 0.9): by area it is
+  // sqrt(24 x 0.9) = 4.6 across; along its length, the length over sqrt 2.
+  const PolygonMesh strip = testing::one_polygon({0, 0, 0}, {24, 0, 0}, {0, 0.9f, 0});
+  EXPECT_NEAR(element_size(strip, 0), std::sqrt(24.0f * 0.9f), 1e-4f);
+  EXPECT_NEAR(split_size(strip, 0, {true, false, false}), 24.0f / std::sqrt(2.0f), 1e-4f);
+  EXPECT_NEAR(split_size(strip, 0), std::hypot(24.0f, 0.9f) / std::sqrt(2.0f), 1e-4f);
+  // Differing across its width only: the short edge does not make it bigger than its area.
+  EXPECT_NEAR(split_size(strip, 0, {false, false, true}), element_size(strip, 0), 1e-6f);
 }
 
 }  // namespace
