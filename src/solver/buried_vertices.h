@@ -14,10 +14,18 @@
 // vertex beyond a wall (a floor running under it into the next room) meets the wall's front and
 // stays where it is.
 //
-// What a moved vertex gathers is its radiosity (what is shown and what refinement compares),
-// not light it holds to shoot: its unshot radiosity stays what the buried point receives,
-// nothing, so the part of a polygon hidden inside a solid (the floor under a box standing on
-// it) adds no light to the scene.
+// What a moved vertex gathers is its radiosity (what is shown and what refinement compares).
+// It is light to shoot too when the vertex lies just under the solid's face, less than
+// kShootingDepth of the smallest element size (a board's end sunk a fraction of a millimetre
+// into a panel, a foot into the floor): the elements around it, split to the smallest size
+// across the contact, lie inside the solid or outside on that face's side, and their visible
+// part reflects what the vertex gathers. Held back, that light is lost to the scene: the
+// furnished rooms' books close short of the emitted energy and their shells are too dark. A
+// vertex deeper inside shoots nothing: its polygon may cross a solid thinner than its
+// elements (a shelf board through a panel), and its light would reach, by interpolation, the
+// elements on the solid's other side, a closed compartment where no light is. Its unshot
+// radiosity stays what the buried point receives, nothing, so the part of a polygon hidden
+// inside a solid (the floor under a box standing on it) adds no light to the scene.
 //
 // The same probes find the *covered* vertices: those with a surface within the smallest element
 // size straight above them, where a surface runs under another a gap's width away (the floor
@@ -45,6 +53,10 @@ namespace rad {
 /// differently.
 constexpr float kGatherInset = 1e-4f;
 
+/// How deep under a solid's face a moved vertex may lie and still shoot what it gathers, as a
+/// fraction of the smallest element size (see above).
+constexpr float kShootingDepth = 0.25f;
+
 /// A vertex that gathers elsewhere than at its position.
 struct MovedVertex {
   uint32_t vertex;
@@ -70,7 +82,14 @@ struct BuriedVertices {
   bool is_covered(size_t p, uint32_t v) const {
     return p < covered.size() && std::binary_search(covered[p].begin(), covered[p].end(), v);
   }
-  /// Whether vertex v of polygon p was moved (it holds no light to shoot).
+  /// Whether vertex v of polygon p, at `x`, reflects what it gathers into the light it shoots:
+  /// any vertex that was not moved, and one moved less than `reach` (kShootingDepth times the
+  /// smallest element size).
+  bool shoots(size_t p, uint32_t v, const Vec3& x, float reach) const {
+    const Vec3 at = gather_point(p, v, x);
+    return at == x || glm::length(at - x) < reach;
+  }
+  /// Whether vertex v of polygon p was moved (it lies inside a solid).
   bool is_moved(size_t p, uint32_t v) const {
     if (p >= moved.size() || moved[p].empty()) return false;
     const auto it = std::lower_bound(moved[p].begin(), moved[p].end(), v,

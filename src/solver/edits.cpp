@@ -39,10 +39,13 @@ void set_material(EditContext ctx, int32_t object, const Material& m,
   for (uint32_t t = o.first_triangle; t < o.first_triangle + o.triangle_count; ++t) {
     std::vector<VertexState>& vs = ctx.solution.vertex_states[t];
     const std::vector<TextureFactors>& factors = ctx.solution.texture_factors[t];
-    // The change of emission is the object's light group's; each group's light reflects anew.
+    // The change of emission is the object's light group's; each group's light reflects anew,
+    // where the vertex shoots what it gathers (buried_vertices.h).
+    const std::vector<Vec3>& positions = ctx.solution.mesh.polygons[t].positions;
     for (size_t v = 0; v < vs.size(); ++v) {
       const Vec3 e = factors.empty() ? d_e : d_e * factors[v].emission;
-      const Vec3 r = factors.empty() ? d_rho : d_rho * factors[v].reflectance;
+      Vec3 r = factors.empty() ? d_rho : d_rho * factors[v].reflectance;
+      if (!vertex_shoots(ctx.scene, t, uint32_t(v), positions[v])) r = Vec3(0.0f);
       vs[v].unshot += e + r * vs[v].irradiance;
       for (size_t g = 0; g < groups; ++g) {
         VertexState& x = ctx.solution.group_states[t][v * groups + g];

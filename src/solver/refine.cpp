@@ -406,7 +406,9 @@ void refine_after_shot(RefineContext ctx, const Receivers& reached, const ShotSo
                                              src, vis, receiver_settings(settings, h, x.polygon),
                                              sc, nullptr, group_gains(sc, groups));
     const std::vector<TextureFactors>& factors = ctx.solution.texture_factors[x.polygon];
-    const bool buried = ctx.scene.buried.is_moved(x.polygon, x.vertex);
+    const std::vector<Vec3>& positions = ctx.solution.mesh.polygons[x.polygon].positions;
+    auto shoots = [&](uint32_t v) { return vertex_shoots(ctx.scene, x.polygon, v, positions[v]); };
+    const bool mid_shoots = shoots(x.vertex);
     // The midpoint's state from its edge's ends, the shot's gain dh there and the major shots'
     // gains major_h there: the whole's, and each light group's alike.
     auto update = [&](const VertexState& a, const VertexState& b, VertexState& mid, int g) {
@@ -420,11 +422,10 @@ void refine_after_shot(RefineContext ctx, const Receivers& reached, const ShotSo
         minor_b += b.last_gain;
       }
       const Vec3 earlier_h = (minor_a + minor_b) * 0.5f + major_h;
-      // A buried vertex's unshot radiosity holds none of its gains (buried_vertices.h).
-      const Vec3 a_u =
-          ctx.scene.buried.is_moved(x.polygon, x.a) ? a.unshot : a.unshot - rho_a * a.last_gain;
-      const Vec3 b_u =
-          ctx.scene.buried.is_moved(x.polygon, x.b) ? b.unshot : b.unshot - rho_b * b.last_gain;
+      // The unshot radiosity of a vertex that does not shoot holds none of its gains
+      // (buried_vertices.h).
+      const Vec3 a_u = shoots(x.a) ? a.unshot - rho_a * a.last_gain : a.unshot;
+      const Vec3 b_u = shoots(x.b) ? b.unshot - rho_b * b.last_gain : b.unshot;
       const Vec3 earlier_u =
           factors.empty()
               ? (a_u + b_u) * 0.5f
@@ -432,7 +433,7 @@ void refine_after_shot(RefineContext ctx, const Receivers& reached, const ShotSo
                                (factors[x.a].reflectance + factors[x.b].reflectance) * 0.5f,
                                factors[x.vertex].reflectance);
       mid.irradiance = earlier_h + dh;
-      mid.unshot = buried ? earlier_u : earlier_u + rho * dh;
+      mid.unshot = mid_shoots ? earlier_u + rho * dh : earlier_u;
       mid.last_gain = dh;
       mid.major = major ? major_h + dh : major_h;
     };
@@ -458,7 +459,9 @@ void refine_after_edit(RefineContext ctx, const Vec3& d_rho, const VisibilityBac
            // Unshot: the edit's part d_rho * H exact, the rest interpolated (transient).
            const std::vector<TextureFactors>& f = ctx.solution.texture_factors[x.polygon];
            auto d_rho_at = [&](uint32_t v) { return f.empty() ? d_rho : d_rho * f[v].reflectance; };
-           const bool buried = ctx.scene.buried.is_moved(x.polygon, x.vertex);
+           const bool shoots =
+               vertex_shoots(ctx.scene, x.polygon, x.vertex,
+                             ctx.solution.mesh.polygons[x.polygon].positions[x.vertex]);
            // The whole's state and each light group's alike.
            auto update = [&](const VertexState& a, const VertexState& b, VertexState& mid, int g) {
              mid.irradiance = g < 0 ? all_h : sc.group_all[size_t(g)];
@@ -466,7 +469,7 @@ void refine_after_edit(RefineContext ctx, const Vec3& d_rho, const VisibilityBac
              mid.unshot = (a.unshot - d_rho_at(x.a) * a.irradiance + b.unshot -
                            d_rho_at(x.b) * b.irradiance) *
                           0.5f;
-             if (!buried) mid.unshot += d_rho_at(x.vertex) * mid.irradiance;
+             if (shoots) mid.unshot += d_rho_at(x.vertex) * mid.irradiance;
              mid.last_gain = Vec3(0.0f);
            };
            whole_and_groups(ctx.solution, x.polygon, x.a, x.b, x.vertex, update);

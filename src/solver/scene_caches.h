@@ -40,4 +40,10 @@ inline BuriedProbe buried_probe(const SceneCaches& scene) {
   return {scene.shadow_offset, scene.min_size};
 }
 
+/// Whether vertex v of polygon p, at `x`, reflects what it gathers into the light it shoots
+/// (BuriedVertices::shoots).
+inline bool vertex_shoots(const SceneCaches& scene, size_t p, uint32_t v, const Vec3& x) {
+  return scene.buried.shoots(p, v, x, kShootingDepth * scene.min_size);
+}
+
 }  // namespace rad

@@ -136,7 +136,7 @@ const Receivers& shoot_to_receivers(ShotContext ctx, const ShotSource& src,
         const Vec3 dh = gather_from_source(at, n, centroid, src, vis, own, sc,
                                            kept ? &rays : nullptr, group_gain);
         const Vec3 rho_v = factors.empty() ? rho : rho * factors[v].reflectance;
-        const bool shoots = at == mesh.positions[v];
+        const bool shoots = vertex_shoots(ctx.scene, p, v, mesh.positions[v]);
         x.receive(dh, rho_v, major, shoots);
         for (size_t g = 0; g < groups; ++g) {
           ctx.solution.group_states[p][v * groups + g].receive(group_gain[g], rho_v, major, shoots);
@@ -155,7 +155,8 @@ const Receivers& shoot_to_receivers(ShotContext ctx, const ShotSource& src,
       // Whether it shoots is the copy's own (each polygon probes toward its own centroid, so a
       // shared vertex may be buried for one and not the other): what refinement reads back.
       const Vec3 rho = ctx.solution.reflectance(p, copy.vertex);
-      const bool shoots = !ctx.scene.buried.is_moved(p, copy.vertex);
+      const bool shoots = vertex_shoots(ctx.scene, p, copy.vertex,
+                                        ctx.solution.mesh.polygons[p].positions[copy.vertex]);
       vs[copy.vertex].receive(dh, rho, major, shoots);
       for (size_t g = 0; g < groups; ++g) {
         const size_t from = size_t(copy.from_vertex) * groups + g;

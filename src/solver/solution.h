@@ -20,7 +20,7 @@ struct VertexState {
 
   /// Takes a shot's gain dh (H before the reflectance rho): into H, the current shot and, for a
   /// major shot, the major part; into the light to shoot only when the vertex `shoots` (not one
-  /// inside a solid, buried_vertices.h).
+  /// deeper inside a solid than kShootingDepth, buried_vertices.h).
   void receive(const Vec3& dh, const Vec3& rho, bool major_shot, bool shoots) {
     irradiance += dh;
     if (shoots) unshot += rho * dh;

@@ -155,6 +155,38 @@ TEST_P(BuriedVertexTest, ASunkCornerGathersWhatTheBoardGetsBesideTheSolid) {
   EXPECT_GT(sunk, 0.5f * open) << "a corner inside the panel gathers as if outside it";
 }
 
+// After the lamp's shot, a board's corner sunk into a panel holds, to shoot, what it gathers times
+// the board's reflectance when it lies just under the panel's face (1 mm, within kShootingDepth of
+// the smallest size: the visible part of its elements reflects that light), and nothing when
+// deeper (5 mm: its polygon might cross a panel thinner than its elements, whose other side it
+// would light).
+TEST_P(BuriedVertexTest, ACornerJustUnderAFaceShootsWhatItGathersADeeperOneNothing) {
+  for (const float sunk : {0.001f, 0.005f}) {
+    const Hierarchy h = board_and([&](SceneDescription& d) {
+      add_solid_box(d, "panel", {1.0f - sunk, -0.5f, -0.5f}, {1.04f - sunk, 1.5f, 0.5f});
+      testing::add_quad(d, "lamp", {0.2f, 0.2f, 1}, {0.2f, 0.8f, 1}, {0.8f, 0.8f, 1},
+                        {0.8f, 0.2f, 1}, Vec3(0), Vec3(1));
+    });
+    const auto vis = make_visibility_backend(GetParam(), h);
+    SolverOptions o;
+    o.max_shots = 1;
+    SolverState s = make_solver_state(h, o);
+    solve(s, *vis);
+    // Triangle 0 is (0,0) (1,0) (1,1): its vertex 1 lies in the panel, moved 1.4 sunk along the
+    // way to the centroid.
+    ASSERT_TRUE(s.scene.buried.is_moved(0, 1)) << "sunk " << sunk;
+    const float reach = kShootingDepth * s.scene.min_size;
+    ASSERT_EQ(1.5f * sunk < reach, sunk == 0.001f) << "the smallest size is " << s.scene.min_size;
+    const VertexState& corner = s.solution.vertex_states[0][1];
+    EXPECT_GT(corner.irradiance.x, 0.05f);
+    if (sunk == 0.001f) {
+      EXPECT_FLOAT_EQ(corner.unshot.x, 0.5f * corner.irradiance.x);
+    } else {
+      EXPECT_EQ(corner.unshot.x, 0.0f);
+    }
+  }
+}
+
 // Without shadows nothing blocks a buried vertex's view: no vertex moves, those made by
 // refinement or by an edit included, and a restored checkpoint has none to forget.
 TEST(BuriedVertices, WithoutShadowsNoVertexMovesNotEvenOneMadeLater) {
