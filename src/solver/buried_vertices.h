@@ -57,6 +57,13 @@ constexpr float kGatherInset = 1e-4f;
 /// fraction of the smallest element size (see above).
 constexpr float kShootingDepth = 0.25f;
 
+/// Whether a vertex at `x` that gathers at `at` reflects what it gathers into the light it
+/// shoots: it was not moved, or moved less than `reach` (kShootingDepth times the smallest
+/// element size).
+inline bool shoots_from(const Vec3& x, const Vec3& at, float reach) {
+  return at == x || glm::length(at - x) < reach;
+}
+
 /// A vertex that gathers elsewhere than at its position.
 struct MovedVertex {
   uint32_t vertex;
@@ -82,12 +89,9 @@ struct BuriedVertices {
   bool is_covered(size_t p, uint32_t v) const {
     return p < covered.size() && std::binary_search(covered[p].begin(), covered[p].end(), v);
   }
-  /// Whether vertex v of polygon p, at `x`, reflects what it gathers into the light it shoots:
-  /// any vertex that was not moved, and one moved less than `reach` (kShootingDepth times the
-  /// smallest element size).
+  /// shoots_from for vertex v of polygon p, at `x`.
   bool shoots(size_t p, uint32_t v, const Vec3& x, float reach) const {
-    const Vec3 at = gather_point(p, v, x);
-    return at == x || glm::length(at - x) < reach;
+    return shoots_from(x, gather_point(p, v, x), reach);
   }
   /// Whether vertex v of polygon p was moved (it lies inside a solid).
   bool is_moved(size_t p, uint32_t v) const {

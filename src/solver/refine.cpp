@@ -406,9 +406,11 @@ void refine_after_shot(RefineContext ctx, const Receivers& reached, const ShotSo
                                              src, vis, receiver_settings(settings, h, x.polygon),
                                              sc, nullptr, group_gains(sc, groups));
     const std::vector<TextureFactors>& factors = ctx.solution.texture_factors[x.polygon];
+    // Whether the edge's ends and the midpoint shoot what they gather (buried_vertices.h).
     const std::vector<Vec3>& positions = ctx.solution.mesh.polygons[x.polygon].positions;
-    auto shoots = [&](uint32_t v) { return vertex_shoots(ctx.scene, x.polygon, v, positions[v]); };
-    const bool mid_shoots = shoots(x.vertex);
+    const bool a_shoots = vertex_shoots(ctx.scene, x.polygon, x.a, positions[x.a]);
+    const bool b_shoots = vertex_shoots(ctx.scene, x.polygon, x.b, positions[x.b]);
+    const bool mid_shoots = vertex_shoots(ctx.scene, x.polygon, x.vertex, positions[x.vertex]);
     // The midpoint's state from its edge's ends, the shot's gain dh there and the major shots'
     // gains major_h there: the whole's, and each light group's alike.
     auto update = [&](const VertexState& a, const VertexState& b, VertexState& mid, int g) {
@@ -422,10 +424,9 @@ void refine_after_shot(RefineContext ctx, const Receivers& reached, const ShotSo
         minor_b += b.last_gain;
       }
       const Vec3 earlier_h = (minor_a + minor_b) * 0.5f + major_h;
-      // The unshot radiosity of a vertex that does not shoot holds none of its gains
-      // (buried_vertices.h).
-      const Vec3 a_u = shoots(x.a) ? a.unshot - rho_a * a.last_gain : a.unshot;
-      const Vec3 b_u = shoots(x.b) ? b.unshot - rho_b * b.last_gain : b.unshot;
+      // The unshot radiosity of a vertex that does not shoot holds none of its gains.
+      const Vec3 a_u = a_shoots ? a.unshot - rho_a * a.last_gain : a.unshot;
+      const Vec3 b_u = b_shoots ? b.unshot - rho_b * b.last_gain : b.unshot;
       const Vec3 earlier_u =
           factors.empty()
               ? (a_u + b_u) * 0.5f

@@ -42,8 +42,9 @@ inline BuriedProbe buried_probe(const SceneCaches& scene) {
 
 /// Whether vertex v of polygon p, at `x`, reflects what it gathers into the light it shoots
 /// (BuriedVertices::shoots).
+inline float shooting_reach(const SceneCaches& scene) { return kShootingDepth * scene.min_size; }
 inline bool vertex_shoots(const SceneCaches& scene, size_t p, uint32_t v, const Vec3& x) {
-  return scene.buried.shoots(p, v, x, kShootingDepth * scene.min_size);
+  return scene.buried.shoots(p, v, x, shooting_reach(scene));
 }
 
 }  // namespace rad

@@ -50,6 +50,7 @@ const Receivers& shoot_to_receivers(ShotContext ctx, const ShotSource& src,
   const Hierarchy& h = *ctx.solution.hierarchy;
   const Triangles& tris = h.triangles;
   const GatherSettings settings = gather_settings(ctx.options, ctx.scene, ctx.energy);
+  const float reach = shooting_reach(ctx.scene);
   const SharedVertices& shared = ctx.scene.shared;
   // The mask is kept between shots and cleared where the last shot set it: a shot that reaches
   // a few rooms of a building costs those rooms, not a pass over the whole scene.
@@ -136,7 +137,7 @@ const Receivers& shoot_to_receivers(ShotContext ctx, const ShotSource& src,
         const Vec3 dh = gather_from_source(at, n, centroid, src, vis, own, sc,
                                            kept ? &rays : nullptr, group_gain);
         const Vec3 rho_v = factors.empty() ? rho : rho * factors[v].reflectance;
-        const bool shoots = vertex_shoots(ctx.scene, p, v, mesh.positions[v]);
+        const bool shoots = shoots_from(mesh.positions[v], at, reach);
         x.receive(dh, rho_v, major, shoots);
         for (size_t g = 0; g < groups; ++g) {
           ctx.solution.group_states[p][v * groups + g].receive(group_gain[g], rho_v, major, shoots);
@@ -155,8 +156,8 @@ const Receivers& shoot_to_receivers(ShotContext ctx, const ShotSource& src,
       // Whether it shoots is the copy's own (each polygon probes toward its own centroid, so a
       // shared vertex may be buried for one and not the other): what refinement reads back.
       const Vec3 rho = ctx.solution.reflectance(p, copy.vertex);
-      const bool shoots = vertex_shoots(ctx.scene, p, copy.vertex,
-                                        ctx.solution.mesh.polygons[p].positions[copy.vertex]);
+      const bool shoots = ctx.scene.buried.shoots(
+          p, copy.vertex, ctx.solution.mesh.polygons[p].positions[copy.vertex], reach);
       vs[copy.vertex].receive(dh, rho, major, shoots);
       for (size_t g = 0; g < groups; ++g) {
         const size_t from = size_t(copy.from_vertex) * groups + g;
