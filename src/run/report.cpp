@@ -109,6 +109,7 @@ void write_stats_json(const std::string& path, const RunOptions& run, const Scen
         {"exact_midpoints", s.stats.exact_midpoints},
         {"interpolated_midpoints", s.stats.interpolated_midpoints},
         {"vertex_evaluations", s.stats.vertex_evaluations},
+        {"middles_gathered", s.stats.middles},
         {"culled", s.stats.culled},
         {"roulette_skipped", s.stats.roulette},
         {"hidden_triangles", s.stats.hidden},

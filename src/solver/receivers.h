@@ -21,6 +21,10 @@ struct Receivers {
   std::vector<uint32_t> polygons;        // in index order
   std::vector<VertexRange> gather_work;  // their vertices in work items (shoot.cpp)
   std::vector<uint32_t> unhidden;        // the triangles culling left to the shot (shoot.cpp)
+  /// Per polygon (sized with `marked`), after a major shot: its leaves whose middle gained from
+  /// the shot more than the subdivision limit beyond their corners' mean (shoot.cpp), sorted;
+  /// empty for the polygons not in `polygons`.
+  std::vector<std::vector<uint32_t>> bright_middles;
 };
 
 }  // namespace rad

@@ -103,10 +103,16 @@ bool holds_shadow_edge(const Solution& s, const BuriedVertices& buried, uint32_t
 // widths). Which of its edges to split: in *d (01, 12, 20).
 constexpr float kCoverSplits = 3.0f;
 bool needs_split(const Solution& s, const BuriedVertices& buried, uint32_t p, uint32_t e,
-                 float limit, float min_split_size, bool shadow_edges, std::array<bool, 3>* d) {
+                 float limit, float min_split_size, bool shadow_edges,
+                 std::span<const uint32_t> bright_middles, std::array<bool, 3>* d) {
   const PolygonMesh& m = s.mesh.polygons[p];
   auto B = [&](uint32_t v) { return s.radiosity(p, v); };
   const Element& el = m.elements[e];
+  // Its middle lit more than its corners say (no smaller than min_split_size: shoot.cpp).
+  if (std::binary_search(bright_middles.begin(), bright_middles.end(), e)) {
+    *d = {true, true, true};
+    return true;
+  }
   const Vec3 b0 = B(el.v[0]), b1 = B(el.v[1]), b2 = B(el.v[2]);
   const bool in0 = buried.is_moved(p, el.v[0]), in1 = buried.is_moved(p, el.v[1]),
              in2 = buried.is_moved(p, el.v[2]);
@@ -136,14 +142,16 @@ bool needs_split(const Solution& s, const BuriedVertices& buried, uint32_t p, ui
 }  // namespace
 
 bool needs_refinement(const SolverOptions& options, const EnergyBalance& energy,
-                      const SceneCaches& scene, const Solution& sol, uint32_t p, bool major_shot) {
+                      const SceneCaches& scene, const Solution& sol, uint32_t p, bool major_shot,
+                      std::span<const uint32_t> bright_middles) {
   const PolygonMesh& m = sol.mesh.polygons[p];
   const float limit = options.subdivision_threshold * energy.radiosity_scale;
   const bool edges = major_shot && options.midpoints == MidpointRule::Exact;
   bool any = false;
   std::array<bool, 3> d;
   for_each_leaf(m, [&](uint32_t e) {
-    any = any || needs_split(sol, scene.buried, p, e, limit, 2.0f * scene.min_size, edges, &d);
+    any = any || needs_split(sol, scene.buried, p, e, limit, 2.0f * scene.min_size, edges,
+                             bright_middles, &d);
   });
   return any;
 }
@@ -237,6 +245,12 @@ void refine(RefineContext ctx, std::span<const uint32_t> polygons, const Receive
         if (!first_pass && check[i].empty()) continue;
         const uint32_t p = polygons[i];
         const bool sharing = shares_vertices(ctx.scene.clusters, p);
+        // The shot's bright middles name leaves of the first pass only (their children are
+        // new): later passes look at the children's corners.
+        const std::span<const uint32_t> middles =
+            after_shot && first_pass && p < reached->bright_middles.size()
+                ? std::span<const uint32_t>(reached->bright_middles[p])
+                : std::span<const uint32_t>();
         PolygonMesh& m = ctx.solution.mesh.polygons[p];
         std::vector<VertexState>& vs = ctx.solution.vertex_states[p];
         std::vector<TextureFactors>& factors = ctx.solution.texture_factors[p];
@@ -244,7 +258,7 @@ void refine(RefineContext ctx, std::span<const uint32_t> polygons, const Receive
           const uint32_t v[3] = {m.elements[e].v[0], m.elements[e].v[1], m.elements[e].v[2]};
           std::array<bool, 3> d;
           if (!needs_split(ctx.solution, ctx.scene.buried, p, e, limit, min_split_size, bends,
-                           &d)) {
+                           middles, &d)) {
             // A corner bent in the last pass splits it too.
             const std::vector<uint32_t>& b = bent[i];
             auto is_in = [&](uint32_t x) { return std::binary_search(b.begin(), b.end(), x); };

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 
+#include "mesh/subdivide.h"
 #include "solver/light_source.h"
+#include "solver/refine.h"
 
 namespace rad {
 
@@ -45,6 +47,51 @@ bool may_receive(const Hierarchy& h, const Clusters& clusters, size_t p, const S
   return highest_above(src.box, c[0], t.normal[p]) > 0.0f;
 }
 
+namespace {
+// After a major shot, the leaves of its receivers whose middle the shot lights more than their
+// corners say (Receivers::bright_middles). Refinement looks at vertices only: the front of a
+// fryer's base, 22 cm wide, its three corners in dark nooks (under the body, by the table top)
+// and its middle open to the room, reads the dark at all three and never splits, and the light
+// that reaches its middle is never shot on. A leaf's centroid gathers the shot once; where the
+// gain there, weighed by the material's reflectance, exceeds its corners' mean by more than the
+// subdivision limit, the leaf splits as if its corners differed. Light that varies linearly
+// across a leaf is its corners' mean at the centroid: only what the corners miss splits. A
+// middle darker than its corners (inside a solid the leaf crosses, in a small shadow) is left
+// to the other rules (docs/solver.md, "Bright middles").
+void find_bright_middles(ShotContext ctx, const ShotSource& src, const VisibilityBackend& vis,
+                         const GatherSettings& settings) {
+  const Hierarchy& h = *ctx.solution.hierarchy;
+  const Triangles& tris = h.triangles;
+  const float limit = ctx.options.subdivision_threshold * ctx.energy.radiosity_scale;
+  const float min_split_size = 2.0f * ctx.scene.min_size;
+  const std::vector<uint32_t>& receivers = ctx.receivers.polygons;
+  parallel_gather(receivers.size(), 1, ctx.stats, [&](size_t begin, size_t end, GatherScratch& sc) {
+    for (size_t i = begin; i != end; ++i) {
+      const uint32_t p = receivers[i];
+      const PolygonMesh& mesh = ctx.solution.mesh.polygons[p];
+      const std::vector<VertexState>& vs = ctx.solution.vertex_states[p];
+      const Vec3 n = tris.normal[p], centroid = tris.centroid(p);
+      const Vec3 rho = ctx.solution.material_of(p).reflectance;
+      const GatherSettings own = receiver_settings(settings, h, p);
+      std::vector<uint32_t>& out = ctx.receivers.bright_middles[p];
+      for_each_leaf(mesh, [&](uint32_t e) {
+        if (split_size(mesh, e) < min_split_size) return;
+        const Element& el = mesh.elements[e];
+        const Vec3 mid =
+            (mesh.positions[el.v[0]] + mesh.positions[el.v[1]] + mesh.positions[el.v[2]]) *
+            (1.0f / 3.0f);
+        const Vec3 corners =
+            (vs[el.v[0]].last_gain + vs[el.v[1]].last_gain + vs[el.v[2]].last_gain) * (1.0f / 3.0f);
+        const Vec3 dh = gather_from_source(mid, n, centroid, src, vis, own, sc);
+        ++sc.stats.middles;
+        if (max_component(rho * (dh - corners)) > limit) out.push_back(e);
+      });
+      std::sort(out.begin(), out.end());
+    }
+  });
+}
+}  // namespace
+
 const Receivers& shoot_to_receivers(ShotContext ctx, const ShotSource& src,
                                     const VisibilityBackend& vis, bool major) {
   const Hierarchy& h = *ctx.solution.hierarchy;
@@ -56,10 +103,12 @@ const Receivers& shoot_to_receivers(ShotContext ctx, const ShotSource& src,
   // a few rooms of a building costs those rooms, not a pass over the whole scene.
   std::vector<uint8_t>& received = ctx.receivers.marked;
   std::vector<uint32_t>& receivers = ctx.receivers.polygons;
+  std::vector<std::vector<uint32_t>>& middles = ctx.receivers.bright_middles;
   if (received.size() != tris.size()) {
     received.assign(tris.size(), 0);
+    middles.assign(tris.size(), {});
   } else {
-    for (uint32_t p : receivers) received[p] = 0;
+    for (uint32_t p : receivers) received[p] = 0, middles[p].clear();
   }
   receivers.clear();
   // With a Lights list only the triangles it names are looked at; under MPI, only this rank's.
@@ -166,6 +215,7 @@ const Receivers& shoot_to_receivers(ShotContext ctx, const ShotSource& src,
       }
     }
   });
+  if (major) find_bright_middles(ctx, src, vis, settings);
   return ctx.receivers;
 }
 

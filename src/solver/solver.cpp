@@ -274,15 +274,18 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
   tbb::parallel_for(size_t(0), receivers.size(), [&](size_t i) {
     // A receiver that gained nothing (every ray blocked: most of those behind a building's
     // walls that culling could not prove hidden) holds what it held and needs no more refining
-    // than after its last change.
+    // than after its last change, unless the middle of one of its leaves gained
+    // (Receivers::bright_middles).
     const std::vector<VertexState>& vs = s.solution.vertex_states[receivers[i]];
-    if (std::all_of(vs.begin(), vs.end(),
+    if (s.receivers.bright_middles[receivers[i]].empty() &&
+        std::all_of(vs.begin(), vs.end(),
                     [](const VertexState& v) { return v.last_gain == Vec3(0.0f); })) {
       unshot[i] = s.energy.unshot_energy[receivers[i]];
       return;
     }
     count(i);
-    refining[i] = needs_refinement(s.options, s.energy, s.scene, s.solution, receivers[i], major);
+    refining[i] = needs_refinement(s.options, s.energy, s.scene, s.solution, receivers[i], major,
+                                   s.receivers.bright_middles[receivers[i]]);
   });
   std::vector<uint32_t> refined, to_refine;
   for (size_t i = 0; i < receivers.size(); ++i) {
