@@ -12,6 +12,11 @@ struct VertexRange {
   uint32_t receiver = 0;  // the polygon's index in Receivers::polygons
 };
 
+/// Leaf `element` of `polygon`: a work item of the look at leaves' middles after a major shot.
+struct LeafRef {
+  uint32_t polygon = 0, element = 0;
+};
+
 /// The polygons that may have gained from the last shot (shoot_to_receivers, shoot.h): a mask
 /// per polygon and their list in index order. The others' VertexState::last_gain is stale. Kept
 /// from shot to shot with the loop's work lists, so a small shot costs what it reaches, not
@@ -25,6 +30,8 @@ struct Receivers {
   /// the shot more than the subdivision limit beyond their corners' mean (shoot.cpp), sorted;
   /// empty for the polygons not in `polygons`.
   std::vector<std::vector<uint32_t>> bright_middles;
+  std::vector<LeafRef> middle_work;    // the leaves looked at (shoot.cpp)
+  std::vector<uint8_t> middle_bright;  // per leaf looked at: whether its middle is bright
 };
 
 }  // namespace rad

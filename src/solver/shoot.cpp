@@ -64,31 +64,49 @@ void find_bright_middles(ShotContext ctx, const ShotSource& src, const Visibilit
   const Triangles& tris = h.triangles;
   const float limit = ctx.options.subdivision_threshold * ctx.energy.radiosity_scale;
   const float min_split_size = 2.0f * ctx.scene.min_size;
-  const std::vector<uint32_t>& receivers = ctx.receivers.polygons;
-  parallel_gather(receivers.size(), 1, ctx.stats, [&](size_t begin, size_t end, GatherScratch& sc) {
+  // The leaves to look at, as work items (a polygon may hold most of them: the Cornell box's
+  // floor), then their answers.
+  std::vector<LeafRef>& work = ctx.receivers.middle_work;
+  work.clear();
+  for (const uint32_t p : ctx.receivers.polygons) {
+    const PolygonMesh& mesh = ctx.solution.mesh.polygons[p];
+    for_each_leaf(mesh, [&](uint32_t e) {
+      if (split_size(mesh, e) >= min_split_size) work.push_back({p, e});
+    });
+  }
+  std::vector<uint8_t>& is_bright = ctx.receivers.middle_bright;
+  is_bright.assign(work.size(), 0);
+  parallel_gather(work.size(), 64, ctx.stats, [&](size_t begin, size_t end, GatherScratch& sc) {
     for (size_t i = begin; i != end; ++i) {
-      const uint32_t p = receivers[i];
+      const uint32_t p = work[i].polygon;
       const PolygonMesh& mesh = ctx.solution.mesh.polygons[p];
       const std::vector<VertexState>& vs = ctx.solution.vertex_states[p];
       const Vec3 n = tris.normal[p], centroid = tris.centroid(p);
       const Vec3 rho = ctx.solution.material_of(p).reflectance;
       const GatherSettings own = receiver_settings(settings, h, p);
-      std::vector<uint32_t>& out = ctx.receivers.bright_middles[p];
-      for_each_leaf(mesh, [&](uint32_t e) {
-        if (split_size(mesh, e) < min_split_size) return;
-        const Element& el = mesh.elements[e];
-        const Vec3 mid =
-            (mesh.positions[el.v[0]] + mesh.positions[el.v[1]] + mesh.positions[el.v[2]]) *
-            (1.0f / 3.0f);
-        const Vec3 corners =
-            (vs[el.v[0]].last_gain + vs[el.v[1]].last_gain + vs[el.v[2]].last_gain) * (1.0f / 3.0f);
-        const Vec3 dh = gather_from_source(mid, n, centroid, src, vis, own, sc);
-        ++sc.stats.middles;
-        if (max_component(rho * (dh - corners)) > limit) out.push_back(e);
-      });
-      std::sort(out.begin(), out.end());
+      GatherSettings clear = own;
+      clear.shadows = false;
+      const Element& el = mesh.elements[work[i].element];
+      const Vec3 mid =
+          (mesh.positions[el.v[0]] + mesh.positions[el.v[1]] + mesh.positions[el.v[2]]) *
+          (1.0f / 3.0f);
+      const Vec3 corners =
+          (vs[el.v[0]].last_gain + vs[el.v[1]].last_gain + vs[el.v[2]].last_gain) * (1.0f / 3.0f);
+      auto bright = [&](const Vec3& gain) { return max_component(rho * (gain - corners)) > limit; };
+      // Its rays only when the middle, every ray clear, would be bright: most are not.
+      ++sc.stats.middles;
+      if (!bright(gather_from_source(mid, n, centroid, src, vis, clear, sc))) continue;
+      ++sc.stats.middles;
+      is_bright[i] = bright(gather_from_source(mid, n, centroid, src, vis, own, sc));
     }
   });
+  // In polygon order, each polygon's leaves in the walk's order: sorted after.
+  for (size_t i = 0; i < work.size(); ++i)
+    if (is_bright[i]) ctx.receivers.bright_middles[work[i].polygon].push_back(work[i].element);
+  for (const uint32_t p : ctx.receivers.polygons) {
+    std::vector<uint32_t>& out = ctx.receivers.bright_middles[p];
+    std::sort(out.begin(), out.end());
+  }
 }
 }  // namespace
 

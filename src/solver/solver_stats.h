@@ -18,9 +18,10 @@ struct SolverStats {
   /// beyond the roulette's reach (when culling is on).
   uint64_t hidden = 0;
   uint64_t vertex_evaluations = 0;  // vertex-to-source gathers computed
-  uint64_t middles = 0;       // leaves' middles gathered after major shots (of the gathers above,
-                              // or culled: shoot.cpp, bright middles)
-  uint64_t subdivisions = 0;  // elements split into four
+  /// Gathers at leaves' middles after major shots, without shadow rays and then, where that
+  /// says they may be bright, with them (counted among those above or culled: shoot.cpp).
+  uint64_t middles = 0;
+  uint64_t subdivisions = 0;     // elements split into four
   uint64_t exact_midpoints = 0;  // new vertices whose shot was computed
   uint64_t interpolated_midpoints = 0;
   double shoot_seconds = 0.0, refine_seconds = 0.0;
