@@ -1,7 +1,9 @@
 // The polygons a shot reached, as the shot hands them to refinement and the bookkeeping.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace rad {
@@ -26,12 +28,19 @@ struct Receivers {
   std::vector<uint32_t> polygons;        // in index order
   std::vector<VertexRange> gather_work;  // their vertices in work items (shoot.cpp)
   std::vector<uint32_t> unhidden;        // the triangles culling left to the shot (shoot.cpp)
-  /// Per polygon (sized with `marked`), after a major shot: its leaves whose middle gained from
-  /// the shot more than the subdivision limit beyond their corners' mean (shoot.cpp), sorted;
-  /// empty for the polygons not in `polygons`.
-  std::vector<std::vector<uint32_t>> bright_middles;
+  /// After a major shot: the leaves of `polygons` whose middle gained from the shot more than
+  /// the subdivision limit beyond their corners' mean (shoot.cpp), by polygon, then element.
+  std::vector<LeafRef> bright_middles;
   std::vector<LeafRef> middle_work;    // the leaves looked at (shoot.cpp)
   std::vector<uint8_t> middle_bright;  // per leaf looked at: whether its middle is bright
+
+  /// The bright middles of polygon p (sorted by element).
+  std::span<const LeafRef> bright_middles_of(uint32_t p) const {
+    const auto [first, last] =
+        std::equal_range(bright_middles.begin(), bright_middles.end(), LeafRef{p, 0},
+                         [](const LeafRef& a, const LeafRef& b) { return a.polygon < b.polygon; });
+    return {first, last};
+  }
 };
 
 }  // namespace rad

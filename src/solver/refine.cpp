@@ -104,12 +104,14 @@ bool holds_shadow_edge(const Solution& s, const BuriedVertices& buried, uint32_t
 constexpr float kCoverSplits = 3.0f;
 bool needs_split(const Solution& s, const BuriedVertices& buried, uint32_t p, uint32_t e,
                  float limit, float min_split_size, bool shadow_edges,
-                 std::span<const uint32_t> bright_middles, std::array<bool, 3>* d) {
+                 std::span<const LeafRef> bright_middles, std::array<bool, 3>* d) {
   const PolygonMesh& m = s.mesh.polygons[p];
   auto B = [&](uint32_t v) { return s.radiosity(p, v); };
   const Element& el = m.elements[e];
   // Its middle lit more than its corners say (no smaller than min_split_size: shoot.cpp).
-  if (std::binary_search(bright_middles.begin(), bright_middles.end(), e)) {
+  if (std::binary_search(
+          bright_middles.begin(), bright_middles.end(), LeafRef{p, e},
+          [](const LeafRef& a, const LeafRef& b) { return a.element < b.element; })) {
     *d = {true, true, true};
     return true;
   }
@@ -143,7 +145,7 @@ bool needs_split(const Solution& s, const BuriedVertices& buried, uint32_t p, ui
 
 bool needs_refinement(const SolverOptions& options, const EnergyBalance& energy,
                       const SceneCaches& scene, const Solution& sol, uint32_t p, bool major_shot,
-                      std::span<const uint32_t> bright_middles) {
+                      std::span<const LeafRef> bright_middles) {
   const PolygonMesh& m = sol.mesh.polygons[p];
   const float limit = options.subdivision_threshold * energy.radiosity_scale;
   const bool edges = major_shot && options.midpoints == MidpointRule::Exact;
@@ -247,10 +249,8 @@ void refine(RefineContext ctx, std::span<const uint32_t> polygons, const Receive
         const bool sharing = shares_vertices(ctx.scene.clusters, p);
         // The shot's bright middles name leaves of the first pass only (their children are
         // new): later passes look at the children's corners.
-        const std::span<const uint32_t> middles =
-            after_shot && first_pass && p < reached->bright_middles.size()
-                ? std::span<const uint32_t>(reached->bright_middles[p])
-                : std::span<const uint32_t>();
+        const std::span<const LeafRef> middles =
+            after_shot && first_pass ? reached->bright_middles_of(p) : std::span<const LeafRef>();
         PolygonMesh& m = ctx.solution.mesh.polygons[p];
         std::vector<VertexState>& vs = ctx.solution.vertex_states[p];
         std::vector<TextureFactors>& factors = ctx.solution.texture_factors[p];

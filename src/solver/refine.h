@@ -20,11 +20,11 @@ inline bool differs(const Vec3& a, const Vec3& b, float limit) {
 /// subdivision limit (the options' threshold in units of the energy's radiosity scale), or it
 /// crosses into a solid (scene.buried), and it is still twice the minimum size; after a
 /// `major_shot` with exact midpoints, also when it holds the shot's shadow edge (refine.cpp);
-/// or it is among `bright_middles` (the shot's list for p, sorted: Receivers::bright_middles). A
+/// or it is among `bright_middles` (the shot's list for p: Receivers::bright_middles_of). A
 /// polygon without one is left as it is by both refinements.
 bool needs_refinement(const SolverOptions& options, const EnergyBalance& energy,
                       const SceneCaches& scene, const Solution& sol, uint32_t p,
-                      bool major_shot = false, std::span<const uint32_t> bright_middles = {});
+                      bool major_shot = false, std::span<const LeafRef> bright_middles = {});
 
 /// Those of `polygons` that needs_refinement names, in order.
 std::vector<uint32_t> needing_refinement(const SolverOptions& options, const EnergyBalance& energy,

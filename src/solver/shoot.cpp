@@ -101,12 +101,12 @@ void find_bright_middles(ShotContext ctx, const ShotSource& src, const Visibilit
     }
   });
   // In polygon order, each polygon's leaves in the walk's order: sorted after.
+  std::vector<LeafRef>& out = ctx.receivers.bright_middles;
   for (size_t i = 0; i < work.size(); ++i)
-    if (is_bright[i]) ctx.receivers.bright_middles[work[i].polygon].push_back(work[i].element);
-  for (const uint32_t p : ctx.receivers.polygons) {
-    std::vector<uint32_t>& out = ctx.receivers.bright_middles[p];
-    std::sort(out.begin(), out.end());
-  }
+    if (is_bright[i]) out.push_back(work[i]);
+  std::sort(out.begin(), out.end(), [](const LeafRef& a, const LeafRef& b) {
+    return a.polygon != b.polygon ? a.polygon < b.polygon : a.element < b.element;
+  });
 }
 }  // namespace
 
@@ -121,12 +121,11 @@ const Receivers& shoot_to_receivers(ShotContext ctx, const ShotSource& src,
   // a few rooms of a building costs those rooms, not a pass over the whole scene.
   std::vector<uint8_t>& received = ctx.receivers.marked;
   std::vector<uint32_t>& receivers = ctx.receivers.polygons;
-  std::vector<std::vector<uint32_t>>& middles = ctx.receivers.bright_middles;
+  ctx.receivers.bright_middles.clear();
   if (received.size() != tris.size()) {
     received.assign(tris.size(), 0);
-    middles.assign(tris.size(), {});
   } else {
-    for (uint32_t p : receivers) received[p] = 0, middles[p].clear();
+    for (uint32_t p : receivers) received[p] = 0;
   }
   receivers.clear();
   // With a Lights list only the triangles it names are looked at; under MPI, only this rank's.

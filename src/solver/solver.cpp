@@ -277,7 +277,7 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
     // than after its last change, unless the middle of one of its leaves gained
     // (Receivers::bright_middles).
     const std::vector<VertexState>& vs = s.solution.vertex_states[receivers[i]];
-    if (s.receivers.bright_middles[receivers[i]].empty() &&
+    if (s.receivers.bright_middles_of(receivers[i]).empty() &&
         std::all_of(vs.begin(), vs.end(),
                     [](const VertexState& v) { return v.last_gain == Vec3(0.0f); })) {
       unshot[i] = s.energy.unshot_energy[receivers[i]];
@@ -285,7 +285,7 @@ std::optional<ShotRecord> step(SolverState& s, const VisibilityBackend& vis) {
     }
     count(i);
     refining[i] = needs_refinement(s.options, s.energy, s.scene, s.solution, receivers[i], major,
-                                   s.receivers.bright_middles[receivers[i]]);
+                                   s.receivers.bright_middles_of(receivers[i]));
   });
   std::vector<uint32_t> refined, to_refine;
   for (size_t i = 0; i < receivers.size(); ++i) {
