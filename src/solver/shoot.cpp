@@ -96,6 +96,10 @@ void find_bright_middles(ShotContext ctx, const ShotSource& src, const Visibilit
       // Its rays only when the middle, every ray clear, would be bright: most are not.
       ++sc.stats.middles;
       if (!bright(gather_from_source(mid, n, centroid, src, vis, clear, sc))) continue;
+      if (!own.shadows) {  // the gain with every ray clear is the answer
+        is_bright[i] = 1;
+        continue;
+      }
       ++sc.stats.middles;
       is_bright[i] = bright(gather_from_source(mid, n, centroid, src, vis, own, sc));
     }
@@ -232,7 +236,11 @@ const Receivers& shoot_to_receivers(ShotContext ctx, const ShotSource& src,
       }
     }
   });
-  if (major) find_bright_middles(ctx, src, vis, settings);
+  // A shot that takes light away (an edit dimming a light or a material) darkens a middle its
+  // corners miss, and its gain with every ray clear is no bound: no look.
+  const Vec3 shot_colour = src.light >= 0 ? src.light_colour : src.mean_unshot;
+  if (major && std::min({shot_colour.x, shot_colour.y, shot_colour.z}) >= 0.0f)
+    find_bright_middles(ctx, src, vis, settings);
   return ctx.receivers;
 }
 
