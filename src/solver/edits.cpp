@@ -122,7 +122,7 @@ size_t force_subdivide(EditContext ctx, int32_t polygon, const VisibilityBackend
   for_each_leaf(m, [&](uint32_t e) { leaves.push_back(e); });
   std::vector<NewMidpoint> created;
   for (uint32_t e : leaves) {
-    if (element_size(m, e) < 2.0f * ctx.scene.min_size) continue;
+    if (element_size(m, e) < min_split_size(ctx.scene)) continue;
     NewMidpoint c[3];
     const int n = split_element(m, e, c);
     created.insert(created.end(), c, c + n);

@@ -19,7 +19,7 @@ constexpr double kMidpointBytes = 48.0;
 }  // namespace
 
 double worst_case_growth_bytes(const SolverState& s) {
-  const float min_split = 2.0f * s.scene.min_size;
+  const float min_split = min_split_size(s.scene);
   // With light groups a vertex has a state per group too.
   const double group_bytes = double(s.solution.group_count) * sizeof(VertexState) * kSlack;
   return tbb::parallel_reduce(

@@ -17,6 +17,7 @@ struct VertexRange {
 /// Leaf `element` of `polygon`: a work item of the look at leaves' middles after a major shot.
 struct LeafRef {
   uint32_t polygon = 0, element = 0;
+  auto operator<=>(const LeafRef&) const = default;  // by polygon, then element
 };
 
 /// The polygons that may have gained from the last shot (shoot_to_receivers, shoot.h): a mask

@@ -98,20 +98,18 @@ bool holds_shadow_edge(const Solution& s, const BuriedVertices& buried, uint32_t
 // radiosities differ by more than `limit`, or it crosses into a solid (some of its vertices
 // buried, some not: its light to shoot falls to nothing across it, buried_vertices.h), or,
 // with `shadow_edges` (after a major shot, exact midpoints), it holds the shot's shadow edge,
-// and it is still at least `min_split_size`; or, down to kCoverSplits levels below that, across
+// and it is still at least `min_split`; or, down to kCoverSplits levels below that, across
 // the edge of a cover (some of its vertices covered, some not: the light falls within a few gap
 // widths). Which of its edges to split: in *d (01, 12, 20).
 constexpr float kCoverSplits = 3.0f;
 bool needs_split(const Solution& s, const BuriedVertices& buried, uint32_t p, uint32_t e,
-                 float limit, float min_split_size, bool shadow_edges,
+                 float limit, float min_split, bool shadow_edges,
                  std::span<const LeafRef> bright_middles, std::array<bool, 3>* d) {
   const PolygonMesh& m = s.mesh.polygons[p];
   auto B = [&](uint32_t v) { return s.radiosity(p, v); };
   const Element& el = m.elements[e];
-  // Its middle lit more than its corners say (no smaller than min_split_size: shoot.cpp).
-  if (std::binary_search(
-          bright_middles.begin(), bright_middles.end(), LeafRef{p, e},
-          [](const LeafRef& a, const LeafRef& b) { return a.element < b.element; })) {
+  // Its middle lit more than its corners say (no smaller than min_split: shoot.cpp).
+  if (std::binary_search(bright_middles.begin(), bright_middles.end(), LeafRef{p, e})) {
     *d = {true, true, true};
     return true;
   }
@@ -121,14 +119,13 @@ bool needs_split(const Solution& s, const BuriedVertices& buried, uint32_t p, ui
   *d = {in0 != in1 || differs(b0, b1, limit), in1 != in2 || differs(b1, b2, limit),
         in2 != in0 || differs(b2, b0, limit)};
   if (!((*d)[0] || (*d)[1] || (*d)[2])) {
-    if (!shadow_edges || !holds_shadow_edge(s, buried, p, e, limit) ||
-        split_size(m, e) < min_split_size)
+    if (!shadow_edges || !holds_shadow_edge(s, buried, p, e, limit) || split_size(m, e) < min_split)
       return false;
     *d = {true, true, true};
     return true;
   }
   const float size = split_size(m, e, *d);
-  if (size >= min_split_size) return true;
+  if (size >= min_split) return true;
   // A contact stays at the smallest size: below it, vertices land on the contact lines, where
   // the buried probes' first hits differ between the backends (they then split differently).
   if (in0 != in1 || in1 != in2) return false;
@@ -138,7 +135,7 @@ bool needs_split(const Solution& s, const BuriedVertices& buried, uint32_t p, ui
   // Down to the same floor whatever the gap: stopping at the gap's width (a lamp 1 cm below a
   // ceiling, elements of 2.7 cm) left the living room of tools/real_rooms at 2.89% against
   // 2.64%, for 6% fewer vertices.
-  return size >= min_split_size * std::exp2(-kCoverSplits);
+  return size >= min_split * std::exp2(-kCoverSplits);
 }
 
 }  // namespace
@@ -147,12 +144,12 @@ bool needs_refinement(const SolverOptions& options, const EnergyBalance& energy,
                       const SceneCaches& scene, const Solution& sol, uint32_t p, bool major_shot,
                       std::span<const LeafRef> bright_middles) {
   const PolygonMesh& m = sol.mesh.polygons[p];
-  const float limit = options.subdivision_threshold * energy.radiosity_scale;
+  const float limit = subdivision_limit(options, energy);
   const bool edges = major_shot && options.midpoints == MidpointRule::Exact;
   bool any = false;
   std::array<bool, 3> d;
   for_each_leaf(m, [&](uint32_t e) {
-    any = any || needs_split(sol, scene.buried, p, e, limit, 2.0f * scene.min_size, edges,
+    any = any || needs_split(sol, scene.buried, p, e, limit, min_split_size(scene), edges,
                              bright_middles, &d);
   });
   return any;
@@ -208,8 +205,8 @@ void refine(RefineContext ctx, std::span<const uint32_t> polygons, const Receive
             bool major, const VisibilityBackend& vis, const Compute& compute) {
   const bool after_shot = reached != nullptr;
   const Triangles& tris = ctx.solution.hierarchy->triangles;
-  const float limit = ctx.options.subdivision_threshold * ctx.energy.radiosity_scale;
-  const float min_split_size = 2.0f * ctx.scene.min_size;  // children keep sizes >= min_size
+  const float limit = subdivision_limit(ctx.options, ctx.energy);
+  const float min_split = min_split_size(ctx.scene);
   // Only the given polygons are looked at: a shot of a Lights list reaches a few rooms of a
   // building, and per-polygon work over the whole scene would cost more than the shot.
   const size_t np = polygons.size();
@@ -257,13 +254,13 @@ void refine(RefineContext ctx, std::span<const uint32_t> polygons, const Receive
         auto consider = [&](uint32_t e) {
           const uint32_t v[3] = {m.elements[e].v[0], m.elements[e].v[1], m.elements[e].v[2]};
           std::array<bool, 3> d;
-          if (!needs_split(ctx.solution, ctx.scene.buried, p, e, limit, min_split_size, bends,
-                           middles, &d)) {
+          if (!needs_split(ctx.solution, ctx.scene.buried, p, e, limit, min_split, bends, middles,
+                           &d)) {
             // A corner bent in the last pass splits it too.
             const std::vector<uint32_t>& b = bent[i];
             auto is_in = [&](uint32_t x) { return std::binary_search(b.begin(), b.end(), x); };
             if (b.empty() || !(is_in(v[0]) || is_in(v[1]) || is_in(v[2])) ||
-                split_size(m, e) < min_split_size)
+                split_size(m, e) < min_split)
               return;
             d = {true, true, true};
           }

@@ -16,6 +16,12 @@ inline bool differs(const Vec3& a, const Vec3& b, float limit) {
   return max_component(glm::abs(a - b)) > limit;
 }
 
+/// How far two vertices' radiosities may differ before their element splits: the options'
+/// threshold in units of the energy's radiosity scale.
+inline float subdivision_limit(const SolverOptions& options, const EnergyBalance& energy) {
+  return options.subdivision_threshold * energy.radiosity_scale;
+}
+
 /// Whether a leaf of polygon p is to be split: its vertices' radiosities differ by more than the
 /// subdivision limit (the options' threshold in units of the energy's radiosity scale), or it
 /// crosses into a solid (scene.buried), and it is still twice the minimum size; after a

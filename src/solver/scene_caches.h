@@ -40,6 +40,9 @@ inline BuriedProbe buried_probe(const SceneCaches& scene) {
   return {scene.shadow_offset, scene.min_size};
 }
 
+/// The smallest size an element may have and still split: its children keep sizes >= min_size.
+inline float min_split_size(const SceneCaches& scene) { return 2.0f * scene.min_size; }
+
 /// Whether vertex v of polygon p, at `x`, reflects what it gathers into the light it shoots
 /// (BuriedVertices::shoots).
 inline float shooting_reach(const SceneCaches& scene) { return kShootingDepth * scene.min_size; }

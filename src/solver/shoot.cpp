@@ -62,8 +62,8 @@ void find_bright_middles(ShotContext ctx, const ShotSource& src, const Visibilit
                          const GatherSettings& settings) {
   const Hierarchy& h = *ctx.solution.hierarchy;
   const Triangles& tris = h.triangles;
-  const float limit = ctx.options.subdivision_threshold * ctx.energy.radiosity_scale;
-  const float min_split_size = 2.0f * ctx.scene.min_size;
+  const float limit = subdivision_limit(ctx.options, ctx.energy);
+  const float min_split = min_split_size(ctx.scene);
   // The leaves to look at, as work items (a polygon may hold most of them: the Cornell box's
   // floor), then their answers.
   std::vector<LeafRef>& work = ctx.receivers.middle_work;
@@ -71,7 +71,7 @@ void find_bright_middles(ShotContext ctx, const ShotSource& src, const Visibilit
   for (const uint32_t p : ctx.receivers.polygons) {
     const PolygonMesh& mesh = ctx.solution.mesh.polygons[p];
     for_each_leaf(mesh, [&](uint32_t e) {
-      if (split_size(mesh, e) >= min_split_size) work.push_back({p, e});
+      if (split_size(mesh, e) >= min_split) work.push_back({p, e});
     });
   }
   std::vector<uint8_t>& is_bright = ctx.receivers.middle_bright;
@@ -108,9 +108,7 @@ void find_bright_middles(ShotContext ctx, const ShotSource& src, const Visibilit
   std::vector<LeafRef>& out = ctx.receivers.bright_middles;
   for (size_t i = 0; i < work.size(); ++i)
     if (is_bright[i]) out.push_back(work[i]);
-  std::sort(out.begin(), out.end(), [](const LeafRef& a, const LeafRef& b) {
-    return a.polygon != b.polygon ? a.polygon < b.polygon : a.element < b.element;
-  });
+  std::sort(out.begin(), out.end());
 }
 }  // namespace
 
