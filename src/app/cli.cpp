@@ -218,7 +218,8 @@ struct Solving {
     app.add_option("--penumbra-rays", o.penumbra_rays,
                    "Where a vertex's shadow rays to a lamp's major shot disagree (a penumbra), or "
                    "its rays to the lamp's corners do, this many more per sample, to points of "
-                   "its stratum that differ from vertex to vertex, and their mean; 0: off (a "
+                   "its stratum that differ from vertex to vertex, and their mean; where all "
+                   "find the lamp hidden, two of them probe for it through gaps; 0: off (a "
                    "penumbra in steps of a sample)")
         ->capture_default_str()
         ->check(whole_number(0, 64));

@@ -237,12 +237,19 @@ bool corners_disagree(const Vec3& x, const Vec3& n, const ShotSource& src, bool 
   return false;
 }
 
-// scratch.clear[j] for the active samples j < na, from their answers in scratch.blocked: 1 or
-// 0 where they all agree and so do the rays to the source's corners (the point sees all of the
-// source or none of it); where they disagree (a penumbra), for a source that gets them
-// (penumbra_source), st.penumbra_rays more rounds, round r
-// to the ends draw_ray_ends gives the key of (x, r), and the part of each sample's rays that
-// reach it. The extra rounds' answers are not kept: their ends move with the point.
+// Rounds that probe a point whose rays to the samples and to the corners all find the source
+// hidden: it may still see the source through a gap narrower than a stratum (between a table's
+// top and the wall behind it, between two boards), which no fixed end finds. The rest of the
+// rounds follow only where a probe finds some of the source.
+constexpr uint32_t kProbeRounds = 2;
+
+// scratch.clear[j] for the active samples j < na, from their answers in scratch.blocked: 1 where
+// they all find the source clear and so do the rays to its corners; 0 where they all find it
+// hidden and so do the corners and kProbeRounds rounds; otherwise (a penumbra, or a gap the
+// probes see through), for a source that gets them (penumbra_source), st.penumbra_rays more
+// rounds in all, round r to the ends draw_ray_ends gives the key of (x, r), and the part of each
+// sample's rays that reach it. The extra rounds' answers are not kept: their ends move with the
+// point.
 void penumbra_rounds(const Vec3& x, const Vec3& n, const ShotSource& src, size_t na,
                      const VisibilityBackend& vis, const GatherSettings& st,
                      GatherScratch& scratch) {
@@ -253,9 +260,13 @@ void penumbra_rounds(const Vec3& x, const Vec3& n, const ShotSource& src, size_t
     scratch.clear[j] = scratch.blocked[j] ? 0.0f : 1.0f;
   }
   if (st.penumbra_rays == 0 || !penumbra_source(src, st)) return;
-  if ((blocked == 0 || blocked == na) &&
-      !corners_disagree(x, n, src, blocked == na, vis, st, scratch))
-    return;
+  const bool hidden = blocked == na;
+  const bool agree =
+      (blocked == 0 || hidden) && !corners_disagree(x, n, src, hidden, vis, st, scratch);
+  if (agree && !hidden) return;
+  // The last probing round: where every ray so far agrees the source is hidden, the rounds end
+  // there unless one of them finds some of it.
+  const uint32_t probes = agree ? std::min(kProbeRounds, st.penumbra_rays) : 0;
   const uint64_t seed = point_seed(x);
   const size_t m = src.end_x.size();
   scratch.blocked.resize(na);
@@ -265,8 +276,13 @@ void penumbra_rounds(const Vec3& x, const Vec3& n, const ShotSource& src, size_t
     const float* e = scratch.round_ends.data();
     trace_fan_to(x, n, e, e + m, e + 2 * m, nullptr, na, vis, st, scratch, scratch.blocked.data());
     for (size_t j = 0; j < na; ++j) scratch.clear[j] += scratch.blocked[j] ? 0.0f : 1.0f;
+    if (r == probes && std::all_of(scratch.clear.begin(), scratch.clear.begin() + ptrdiff_t(na),
+                                   [](float c) { return c == 0.0f; }))
+      return;
   }
-  const float mean = 1.0f / float(st.penumbra_rays + 1);
+  // A gap the probes found: the first pass's answers are left out of the mean, for its fixed
+  // ends were all hidden (which is why the point probed) and would weigh the mean towards none.
+  const float mean = 1.0f / float(st.penumbra_rays + (probes > 0 ? 0 : 1));
   for (size_t j = 0; j < na; ++j) scratch.clear[j] *= mean;
 }
 

@@ -47,7 +47,8 @@ struct GatherSettings {
   /// Penumbra rounds (SolverOptions::penumbra_rays): where a point's rays to a shot's
   /// samples (or to its corners) disagree, this many more rays per sample, each round to other
   /// points of the strata drawn by a hash of the point, and the visibility of each sample their
-  /// mean.
+  /// mean; where they all agree the source is hidden, the first two rounds probe for gaps and
+  /// the rest follow where a probe finds the source.
   uint32_t penumbra_rays = 0;
   /// Rounds only for shots whose mean sample carries at least this energy (area x mean-channel
   /// radiosity).
