@@ -185,6 +185,37 @@ TEST(Compare, ASmallFaceFarFromTheOriginFindsItsPolygon) {
   EXPECT_EQ(polygon, std::vector<int32_t>(20, 0));
 }
 
+// Slivers of a turned triangle, each as high as a float's rounding there: their normals, from
+// rounded corners, point anywhere, yet each lies on the triangle.
+TEST(Compare, ASliverWhoseNormalIsRoundingFindsItsPolygon) {
+  SceneDescription s;
+  s.name = "sliver";
+  ObjectDescription o;
+  o.name = "sliver";
+  o.material = {Vec3(0.5f), Vec3(0.0f)};
+  const Vec3 a(1.91f, 0.38f, 3.44f), b = a + Vec3(0.0f, 0.31f, 0.18f),
+                                     c = a + Vec3(0.21f, 0.02f, -0.36f);
+  o.triangles = {{a, b, c}};
+  s.objects = {o};
+  s.roots = {0};
+  const Hierarchy h = build_hierarchy(s);
+  std::vector<Vec3> position;
+  std::vector<uint32_t> indices;
+  for (int k = 0; k < 20; ++k) {
+    const double v = 0.02 + 0.02 * k;
+    auto on = [&](double u, double dv) {
+      return Vec3(DVec3(a) + u * DVec3(b - a) + (v + dv) * DVec3(c - a));
+    };
+    const uint32_t base = uint32_t(position.size());
+    position.push_back(on(0.1, 0));
+    position.push_back(on(0.5, 0));
+    position.push_back(on(0.3, 2e-7));
+    indices.insert(indices.end(), {base, base + 1, base + 2});
+  }
+  const std::vector<int32_t> polygon = assign_face_polygons(h.triangles, position, indices);
+  EXPECT_EQ(polygon, std::vector<int32_t>(20, 0));
+}
+
 TEST(RadiosityPly, ReadsBackWhatRadWritesAndRecoversPolygons) {
   const Hierarchy h = unit_square();
   const testing::MeshParts m = split_mesh(h);

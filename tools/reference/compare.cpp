@@ -246,10 +246,14 @@ std::vector<int32_t> assign_face_polygons(const Triangles& t, std::span<const Ve
     const double rounding = 8.0 * double(std::numeric_limits<float>::epsilon()) * largest;
     const double edge = std::sqrt(nl);
     const double min_cosine = edge > 0.0 ? std::min(0.999, 1.0 - 10.0 * rounding / edge) : 0.999;
+    // A sliver whose height is within the rounding (a split of a triangle a fraction of a
+    // micrometre wide) has a normal of rounding alone, any direction: its plane and place decide.
+    const double longest = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
+    const bool sliver = !(nl > 10.0 * rounding * longest);
     auto matches = [&](int32_t tri) {
       const auto& k = t.corners[size_t(tri)];
       const DVec3 tn(t.normal[size_t(tri)]);
-      if (nl <= 0.0 || glm::dot(n / nl, tn) < std::max(min_cosine, 0.0)) return false;
+      if (!sliver && glm::dot(n / nl, tn) < std::max(min_cosine, 0.0)) return false;
       const Barycentric bc = barycentric(DVec3(k[0]), DVec3(k[1]), DVec3(k[2]), centroid);
       const double size = std::sqrt(double(t.area[size_t(tri)]));
       return bc.inside() > -1e-5 - rounding / std::max(size, 1e-30) &&
