@@ -121,15 +121,19 @@ TEST(BackendAgreement, GeneratedScenesAtASmallSize) {
 }
 
 TEST(BackendAgreement, RandomBoxesThatTouchAndSoupsOnEveryBackend) {
-  // The first with the default penumbra rays, the others without: touching boxes put most
-  // vertices in a penumbra, whose rounds the brute-force oracle traces 5 times as long as the
-  // rest of the solve (the bundled umbra scene's rounds are compared above).
-  for (uint32_t seed : {1u, 2u, 3u}) {
+  for (uint32_t seed : {2u, 3u}) {
     expect_agreement("random boxes, seed " + std::to_string(seed),
-                     build_hierarchy(random_boxes(6, seed)), 5, true,
-                     seed == 1 ? SolverOptions{}.penumbra_rays : 0);
+                     build_hierarchy(random_boxes(6, seed)), 5, true, 0);
   }
   expect_agreement("lit soup", build_hierarchy(lit_soup(150, 5)), 4, true, 0);
+}
+
+// Touching boxes put most vertices in a penumbra or a gap, whose rounds the brute-force oracle
+// traces 5 times as long as the rest of the solve: one seed with the default penumbra rays (the
+// bundled umbra scene's rounds are compared above).
+TEST(BackendAgreement, RandomBoxesWithPenumbraRoundsOnEveryBackend) {
+  expect_agreement("random boxes, seed 1", build_hierarchy(random_boxes(6, 1)), 5, true,
+                   SolverOptions{}.penumbra_rays);
 }
 
 }  // namespace
