@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <fstream>
 
 #include "../export/mesh_parts.h"
@@ -152,68 +153,58 @@ TEST(Compare, MissingPolygonIsAnError) {
   EXPECT_THROW(compare_to_reference(view(m), reference_of(h, 1.0f)), Error);
 }
 
-// A tilted triangle 16 m from the origin, and faces of it a few micrometres across: its corners,
-// rounded to floats there, tilt its normal and lift its centroid off the plane by more than a
-// fixed fraction of its size, yet it lies on that triangle.
-TEST(Compare, ASmallFaceFarFromTheOriginFindsItsPolygon) {
+// The polygons assign_face_polygons finds for faces on a scene of the one triangle abc, each
+// face three points (u, v) of it, at a + u (b - a) + v (c - a) rounded to floats as rad writes
+// them.
+std::vector<int32_t> polygons_of_faces(const Vec3& a, const Vec3& b, const Vec3& c,
+                                       const std::vector<std::array<glm::dvec2, 3>>& faces) {
   SceneDescription s;
-  s.name = "far";
+  s.name = "triangle";
   ObjectDescription o;
-  o.name = "far";
+  o.name = "triangle";
   o.material = {Vec3(0.5f), Vec3(0.0f)};
-  const Vec3 at(16.2421f, -5.58674f, 10.1272f);
-  const Vec3 a = at, b = at + Vec3(0.7f, 0.31f, 0.05f), c = at + Vec3(0.13f, 0.52f, 0.61f);
   o.triangles = {{a, b, c}};
   s.objects = {o};
   s.roots = {0};
   const Hierarchy h = build_hierarchy(s);
   std::vector<Vec3> position;
   std::vector<uint32_t> indices;
+  for (const auto& face : faces) {
+    for (const glm::dvec2& uv : face) {
+      indices.push_back(uint32_t(position.size()));
+      position.push_back(Vec3(DVec3(a) + uv.x * DVec3(b - a) + uv.y * DVec3(c - a)));
+    }
+  }
+  return assign_face_polygons(h.triangles, position, indices);
+}
+
+// A tilted triangle 16 m from the origin, and faces of it a few micrometres across: its corners,
+// rounded to floats there, tilt its normal and lift its centroid off the plane by more than a
+// fixed fraction of its size, yet it lies on that triangle.
+TEST(Compare, ASmallFaceFarFromTheOriginFindsItsPolygon) {
+  const Vec3 at(16.2421f, -5.58674f, 10.1272f);
+  std::vector<std::array<glm::dvec2, 3>> faces;
   for (int k = 0; k < 20; ++k) {
     const double u = 0.03 * k, v = 0.3;
-    auto on = [&](double du, double dv) {
-      const DVec3 p = DVec3(a) + (u + du) * DVec3(b - a) + (v + dv) * DVec3(c - a);
-      return Vec3(p);  // rounded to float, as rad writes it
-    };
-    const uint32_t base = uint32_t(position.size());
-    position.push_back(on(0, 0));
-    position.push_back(on(1e-5, 0));
-    position.push_back(on(0, 1e-5));
-    indices.insert(indices.end(), {base, base + 1, base + 2});
+    faces.push_back({glm::dvec2(u, v), glm::dvec2(u + 1e-5, v), glm::dvec2(u, v + 1e-5)});
   }
-  const std::vector<int32_t> polygon = assign_face_polygons(h.triangles, position, indices);
-  EXPECT_EQ(polygon, std::vector<int32_t>(20, 0));
+  EXPECT_EQ(
+      polygons_of_faces(at, at + Vec3(0.7f, 0.31f, 0.05f), at + Vec3(0.13f, 0.52f, 0.61f), faces),
+      std::vector<int32_t>(20, 0));
 }
 
 // Slivers of a turned triangle, each as high as a float's rounding there: their normals, from
 // rounded corners, point anywhere, yet each lies on the triangle.
 TEST(Compare, ASliverWhoseNormalIsRoundingFindsItsPolygon) {
-  SceneDescription s;
-  s.name = "sliver";
-  ObjectDescription o;
-  o.name = "sliver";
-  o.material = {Vec3(0.5f), Vec3(0.0f)};
-  const Vec3 a(1.91f, 0.38f, 3.44f), b = a + Vec3(0.0f, 0.31f, 0.18f),
-                                     c = a + Vec3(0.21f, 0.02f, -0.36f);
-  o.triangles = {{a, b, c}};
-  s.objects = {o};
-  s.roots = {0};
-  const Hierarchy h = build_hierarchy(s);
-  std::vector<Vec3> position;
-  std::vector<uint32_t> indices;
+  const Vec3 a(1.91f, 0.38f, 3.44f);
+  std::vector<std::array<glm::dvec2, 3>> faces;
   for (int k = 0; k < 20; ++k) {
     const double v = 0.02 + 0.02 * k;
-    auto on = [&](double u, double dv) {
-      return Vec3(DVec3(a) + u * DVec3(b - a) + (v + dv) * DVec3(c - a));
-    };
-    const uint32_t base = uint32_t(position.size());
-    position.push_back(on(0.1, 0));
-    position.push_back(on(0.5, 0));
-    position.push_back(on(0.3, 2e-7));
-    indices.insert(indices.end(), {base, base + 1, base + 2});
+    faces.push_back({glm::dvec2(0.1, v), glm::dvec2(0.5, v), glm::dvec2(0.3, v + 2e-7)});
   }
-  const std::vector<int32_t> polygon = assign_face_polygons(h.triangles, position, indices);
-  EXPECT_EQ(polygon, std::vector<int32_t>(20, 0));
+  EXPECT_EQ(
+      polygons_of_faces(a, a + Vec3(0.0f, 0.31f, 0.18f), a + Vec3(0.21f, 0.02f, -0.36f), faces),
+      std::vector<int32_t>(20, 0));
 }
 
 TEST(RadiosityPly, ReadsBackWhatRadWritesAndRecoversPolygons) {
