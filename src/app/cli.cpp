@@ -300,10 +300,11 @@ struct Showing {
     app.add_option(
         "--camera", camera,
         fmt::format("Image camera: eye, target and vertical field of view in degrees, y up "
-                    "(default: the scene framed from outside its most open side, or from just "
-                    "inside it when every side is closed; fov {}); the camera used is printed in "
-                    "this syntax",
-                    kDefaultFovDeg));
+                    "(default: the scene framed from outside its most open side, fov {}; when "
+                    "every side is closed (a room), from high in the corner with the least in the "
+                    "way, looking down across it, {} degrees either side); the camera used is "
+                    "printed in this syntax",
+                    kDefaultFovDeg, kRoomHalfWidthDeg));
     app.add_option("--size", size, "Image size WxH in pixels")->capture_default_str();
     if (final_render) {
       app.add_option("--render", render,

@@ -19,7 +19,10 @@ namespace {
 constexpr float kPi = 3.14159265358979f;
 constexpr float kMargin = 1.03f;       // the framed face fills 1/1.03 of the view
 constexpr float kOpenCoverage = 0.5f;  // a side less covered than this is open
-constexpr float kMaxInsideFovDeg = 100.0f;
+// In a closed room: the eye's height (of the room's), the target's, and how far across the room
+// the target lies from the eye's corner.
+constexpr float kCornerEyeHeight = 0.8f, kCornerTargetHeight = 0.2f, kCornerTargetAcross = 0.75f;
+constexpr float kMaxRoomFovDeg = 100.0f;  // a tall narrow image
 // A wall closes a side when it lies within this fraction of the box's depth across that side
 // from the side's face: a room's walls are rarely all exactly on its bounding box (the Cornell
 // box's measured red wall leans 3.2 mm in 556; a wall modelled with its thickness has its inner
@@ -167,33 +170,71 @@ Camera default_camera(std::span<const Vec3> positions, std::span<const uint32_t>
   };
   constexpr std::array<Side, 4> kSides{{{2, -1.0f}, {2, 1.0f}, {0, -1.0f}, {0, 1.0f}}};
   Side best = kSides[0];
-  float best_coverage = 2.0f, best_reach = 0.0f;
-  for (const Side& s : kSides) {
-    float reach = 0.0f;
+  float best_coverage = 2.0f;
+  std::array<float, 4> reach{};
+  for (size_t k = 0; k < kSides.size(); ++k) {
+    const Side& s = kSides[k];
     const float cover =
-        side_coverage(positions, indices, box, s.axis, s.sign, kWallSlab * ext[s.axis], &reach);
-    if (cover < best_coverage - 1e-3f) best = s, best_coverage = cover, best_reach = reach;
+        side_coverage(positions, indices, box, s.axis, s.sign, kWallSlab * ext[s.axis], &reach[k]);
+    if (cover < best_coverage - 1e-3f) best = s, best_coverage = cover;
   }
 
-  const int u = best.axis == 2 ? 0 : 2;
-  const float half_w = 0.5f * ext[u], half_h = 0.5f * ext.y, depth = ext[best.axis];
-  const float fit = std::max(half_h, half_w / std::max(aspect, 1e-6f));  // half-height to show
-  Vec3 out(0.0f);
-  out[best.axis] = best.sign;  // outward normal of the chosen face
-  Vec3 face_centre = mid;
-  face_centre[best.axis] = best.sign < 0 ? box.lo[best.axis] : box.hi[best.axis];
   if (best_coverage < kOpenCoverage) {
+    const int u = best.axis == 2 ? 0 : 2;
+    const float half_w = 0.5f * ext[u], half_h = 0.5f * ext.y;
+    const float fit = std::max(half_h, half_w / std::max(aspect, 1e-6f));  // half-height to show
+    Vec3 out(0.0f), face_centre = mid;
+    out[best.axis] = best.sign;  // outward normal of the chosen face
+    face_centre[best.axis] = best.sign < 0 ? box.lo[best.axis] : box.hi[best.axis];
     const float tan_half = std::tan(kDefaultFovDeg * kPi / 360.0f);
     const float dist = std::max(fit * kMargin / tan_half, 1e-3f * box.diagonal());
     cam.eye = face_centre + out * dist;
     cam.target = face_centre;
-  } else {
-    // In front of the wall closing the side, however far in from the box it stands.
-    cam.eye = face_centre - out * (best_reach + 1e-3f * std::max(depth, 1e-30f));
-    cam.target = face_centre - out * depth;
-    const float fov = 360.0f / kPi * std::atan(fit / std::max(depth, 1e-30f));
-    cam.fov_y_deg = std::clamp(fov, kDefaultFovDeg, kMaxInsideFovDeg);
+    return cam;
   }
+  // Every side closed: a room. Standing at a wall looking across, the eye would see the backs of
+  // whatever stands against the wall behind and beside it (a desk's panel, a table's end filling
+  // half the view); it stands high in a corner instead, in front of both walls, and looks down
+  // across the room, where the furniture along the far walls faces it. Of the four corners, the
+  // one whose view is least in the way: what stands in the room (walls, floor and ceiling left
+  // out: the triangles within kWallSlab of the box's faces) weighed by area over squared
+  // distance from the eye, the solid angle it would take up, so that a shelf hung beside one
+  // corner's eye counts more than a sofa across the room.
+  const Vec3 lo_in = box.lo + ext * kWallSlab, hi_in = box.hi - ext * kWallSlab;
+  const float near2 = 0.01f * glm::dot(ext, ext);  // closer than 10% of the diagonal counts as that
+  std::array<Vec3, 4> eyes;                        // corners (-x, -z), (+x, -z), (-x, +z), (+x, +z)
+  for (size_t k = 0; k < 4; ++k) {
+    const float sx = k & 1u ? 1.0f : -1.0f, sz = k & 2u ? 1.0f : -1.0f;
+    // reach: the sides -z, +z, -x, +x in kSides' order; a step of 3% more off each wall.
+    const float in_x = reach[sx < 0 ? 2 : 3] + 0.03f * ext.x;
+    const float in_z = reach[sz < 0 ? 0 : 1] + 0.03f * ext.z;
+    eyes[k] = Vec3(sx < 0 ? box.lo.x + in_x : box.hi.x - in_x, box.lo.y + kCornerEyeHeight * ext.y,
+                   sz < 0 ? box.lo.z + in_z : box.hi.z - in_z);
+  }
+  std::array<double, 4> in_the_way{};
+  for (size_t f = 0; f + 2 < indices.size(); f += 3) {
+    const Vec3 a = positions[indices[f]], b = positions[indices[f + 1]],
+               c = positions[indices[f + 2]];
+    const Vec3 centroid = (a + b + c) * (1.0f / 3.0f);
+    if (glm::any(glm::lessThan(centroid, lo_in)) || glm::any(glm::greaterThan(centroid, hi_in)))
+      continue;
+    const double area = 0.5 * double(glm::length(glm::cross(b - a, c - a)));
+    for (size_t k = 0; k < 4; ++k) {
+      const Vec3 d = centroid - eyes[k];
+      in_the_way[k] += area / double(std::max(glm::dot(d, d), near2));
+    }
+  }
+  const size_t k =
+      size_t(std::min_element(in_the_way.begin(), in_the_way.end()) - in_the_way.begin());
+  cam.eye = eyes[k];
+  // The target: across the room from the corner, low.
+  const Vec3 at(k & 1u ? box.hi.x : box.lo.x, box.lo.y, k & 2u ? box.hi.z : box.lo.z);
+  cam.target = Vec3(at.x + (mid.x - at.x) * 2.0f * kCornerTargetAcross,
+                    box.lo.y + kCornerTargetHeight * ext.y,
+                    at.z + (mid.z - at.z) * 2.0f * kCornerTargetAcross);
+  const float half_width = std::tan(kRoomHalfWidthDeg * kPi / 180.0f);
+  cam.fov_y_deg = std::clamp(360.0f / kPi * std::atan(half_width / std::max(aspect, 1e-6f)),
+                             kDefaultFovDeg, kMaxRoomFovDeg);
   return cam;
 }
 

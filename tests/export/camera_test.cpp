@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "core/error.h"
@@ -97,8 +98,65 @@ TEST(Camera, DefaultForAClosedRoomStandsInsideIt) {
     EXPECT_GT(c.eye[k], 0.0f);
     EXPECT_LT(c.eye[k], 1.0f);
   }
-  EXPECT_NEAR(c.target.z, 1.0f, 1e-6f);  // looks across at the far wall
-  EXPECT_GT(c.fov_y_deg, 50.0f);         // wide enough to show all of it
+  // High in a corner, looking down across the room's middle.
+  EXPECT_GT(c.eye.y, 0.5f);
+  EXPECT_LT(c.target.y, c.eye.y);
+  for (const int k : {0, 2})
+    EXPECT_GT(std::abs(c.target[k] - c.eye[k]), 0.5f) << "across the room along axis " << k;
+  EXPECT_GT(c.fov_y_deg, 50.0f);  // wide enough to show it
+}
+
+// A room 5 x 2.7 x 4 m with a solid block in three of its four quarters: the eye stands in the
+// empty one, in front of its two walls and above the blocks, and sees each block's top.
+TEST(Camera, DefaultForAFurnishedRoomStandsInItsEmptiestCorner) {
+  const float w = 5.0f, h = 2.7f, d = 4.0f;
+  for (int empty = 0; empty < 4; ++empty) {
+    Soup s;
+    auto quad = [&](Vec3 a, Vec3 b, Vec3 c, Vec3 e) {  // front by the right-hand rule
+      const uint32_t n = uint32_t(s.positions.size());
+      s.positions.insert(s.positions.end(), {a, b, c, e});
+      s.indices.insert(s.indices.end(), {n, n + 1, n + 2, n, n + 2, n + 3});
+    };
+    // The room's faces, facing in.
+    quad({0, 0, 0}, {0, 0, d}, {w, 0, d}, {w, 0, 0});  // floor
+    quad({0, h, 0}, {w, h, 0}, {w, h, d}, {0, h, d});  // ceiling
+    quad({0, 0, 0}, {0, h, 0}, {0, h, d}, {0, 0, d});  // x = 0
+    quad({w, 0, 0}, {w, 0, d}, {w, h, d}, {w, h, 0});  // x = w
+    quad({0, 0, d}, {0, h, d}, {w, h, d}, {w, 0, d});  // z = d
+    quad({0, 0, 0}, {w, 0, 0}, {w, h, 0}, {0, h, 0});  // z = 0
+    const std::array<Vec3, 4> corners{Vec3(0, 0, 0), Vec3(w, 0, 0), Vec3(0, 0, d), Vec3(w, 0, d)};
+    std::vector<Vec3> tops;
+    for (int k = 0; k < 4; ++k) {
+      if (k == empty) continue;
+      // A block 1 m wide, 1 m high, 0.5 m from the corner's two walls; its faces facing out.
+      const Vec3 lo(corners[k].x > 0 ? w - 1.5f : 0.5f, 0.0f, corners[k].z > 0 ? d - 1.5f : 0.5f);
+      const Vec3 hi = lo + Vec3(1.0f);
+      quad({lo.x, hi.y, lo.z}, {lo.x, hi.y, hi.z}, {hi.x, hi.y, hi.z}, {hi.x, hi.y, lo.z});  // top
+      quad({lo.x, lo.y, lo.z}, {lo.x, hi.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, lo.y, lo.z});  // -z
+      quad({lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z});  // +z
+      quad({lo.x, lo.y, lo.z}, {lo.x, lo.y, hi.z}, {lo.x, hi.y, hi.z}, {lo.x, hi.y, lo.z});  // -x
+      quad({hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, hi.y, hi.z}, {hi.x, lo.y, hi.z});  // +x
+      tops.push_back((lo + hi) * 0.5f + Vec3(0, 0.5f, 0));
+    }
+    const Camera c = default_camera(s.positions, s.indices, 1.0f);
+    const Vec3 corner = corners[size_t(empty)];
+    EXPECT_LT(std::abs(c.eye.x - corner.x), 0.5f) << empty;
+    EXPECT_LT(std::abs(c.eye.z - corner.z), 0.5f) << empty;
+    EXPECT_GT(c.eye.x, 0.0f) << empty;
+    EXPECT_LT(c.eye.x, w) << empty;
+    EXPECT_GT(c.eye.z, 0.0f) << empty;
+    EXPECT_LT(c.eye.z, d) << empty;
+    EXPECT_GT(c.eye.y, 1.0f) << empty << ": above the blocks";
+    EXPECT_LT(c.eye.y, h) << empty;
+    const CameraFrame f = camera_frame(c, 1.0f);
+    for (const Vec3& t : tops) {  // every block's top in view
+      const Vec3 v = t - c.eye;
+      const float ahead = glm::dot(v, f.forward);
+      ASSERT_GT(ahead, 0.0f) << empty;
+      EXPECT_LT(std::abs(glm::dot(v, f.right)), ahead * f.tan_half_x) << empty;
+      EXPECT_LT(std::abs(glm::dot(v, f.up)), ahead * f.tan_half_y) << empty;
+    }
+  }
 }
 
 // A closed object (a cube whose faces point outwards, as a model's do) is seen from outside:
