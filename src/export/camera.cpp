@@ -20,8 +20,11 @@ constexpr float kPi = 3.14159265358979f;
 constexpr float kMargin = 1.03f;       // the framed face fills 1/1.03 of the view
 constexpr float kOpenCoverage = 0.5f;  // a side less covered than this is open
 // In a closed room: the eye's height (of the room's), the target's, and how far across the room
-// the target lies from the eye's corner.
+// the target lies from the eye's corner; how far off each wall the eye stands beyond the wall's
+// reach, and how close to the floor or the ceiling a face is part of it (of the room's extent);
+// closer to an eye than kNearEye of the room's diagonal, a triangle counts as that far.
 constexpr float kCornerEyeHeight = 0.8f, kCornerTargetHeight = 0.2f, kCornerTargetAcross = 0.75f;
+constexpr float kCornerStep = 0.03f, kShellDepth = 0.01f, kNearEye = 0.1f;
 constexpr float kMaxRoomFovDeg = 100.0f;  // a tall narrow image
 // A wall closes a side when it lies within this fraction of the box's depth across that side
 // from the side's face: a room's walls are rarely all exactly on its bounding box (the Cornell
@@ -192,43 +195,67 @@ Camera default_camera(std::span<const Vec3> positions, std::span<const uint32_t>
     cam.target = face_centre;
     return cam;
   }
-  // Every side closed: a room. Standing at a wall looking across, the eye would see the backs of
-  // whatever stands against the wall behind and beside it (a desk's panel, a table's end filling
-  // half the view); it stands high in a corner instead, in front of both walls, and looks down
-  // across the room, where the furniture along the far walls faces it. Of the four corners, the
-  // one whose view is least in the way: what stands in the room (walls, floor and ceiling left
-  // out: the triangles within kWallSlab of the box's faces) weighed by area over squared
-  // distance from the eye, the solid angle it would take up, so that a shelf hung beside one
-  // corner's eye counts more than a sofa across the room.
-  const Vec3 lo_in = box.lo + ext * kWallSlab, hi_in = box.hi - ext * kWallSlab;
-  const float near2 = 0.01f * glm::dot(ext, ext);  // closer than 10% of the diagonal counts as that
-  std::array<Vec3, 4> eyes;                        // corners (-x, -z), (+x, -z), (-x, +z), (+x, +z)
-  for (size_t k = 0; k < 4; ++k) {
-    const float sx = k & 1u ? 1.0f : -1.0f, sz = k & 2u ? 1.0f : -1.0f;
-    // reach: the sides -z, +z, -x, +x in kSides' order; a step of 3% more off each wall.
-    const float in_x = reach[sx < 0 ? 2 : 3] + 0.03f * ext.x;
-    const float in_z = reach[sz < 0 ? 0 : 1] + 0.03f * ext.z;
-    eyes[k] = Vec3(sx < 0 ? box.lo.x + in_x : box.hi.x - in_x, box.lo.y + kCornerEyeHeight * ext.y,
-                   sz < 0 ? box.lo.z + in_z : box.hi.z - in_z);
+  // Every side closed: a room. The eye stands high in a corner, in front of both walls, and
+  // looks down across the room, where the furniture along the far walls faces it and the backs
+  // of what stands against the walls beside it are out of view. Of the four corners, the one
+  // with the least in the way: what stands in the room weighed by area over squared distance
+  // from the eye, the view it would take up, so that a cabinet hung beside one corner's eye
+  // counts more than a sofa across the room. The room's shell is left out: a triangle within
+  // kShellDepth of one side's face, or facing into the room within its wall's reach
+  // (side_coverage) and kShellDepth more, or lying flat within kWallSlab of the floor or the
+  // ceiling (a rug too).
+  struct Corner {
+    float sx, sz;           // -1 or +1: the corner at box.lo or box.hi along x and z
+    size_t wall_x, wall_z;  // its walls' entries in kSides (and reach)
+  };
+  constexpr std::array<Corner, 4> kCorners{
+      {{-1.0f, -1.0f, 2, 0}, {1.0f, -1.0f, 3, 0}, {-1.0f, 1.0f, 2, 1}, {1.0f, 1.0f, 3, 1}}};
+  std::array<Vec3, 4> eyes;
+  for (size_t k = 0; k < kCorners.size(); ++k) {
+    const Corner& c = kCorners[k];
+    const float in_x = reach[c.wall_x] + kCornerStep * ext.x;
+    const float in_z = reach[c.wall_z] + kCornerStep * ext.z;
+    eyes[k] =
+        Vec3(c.sx < 0 ? box.lo.x + in_x : box.hi.x - in_x, box.lo.y + kCornerEyeHeight * ext.y,
+             c.sz < 0 ? box.lo.z + in_z : box.hi.z - in_z);
   }
+  const auto part_of_the_shell = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+    const Vec3 n = glm::cross(b - a, c - a);
+    const float len = glm::length(n);
+    for (size_t k = 0; k < kSides.size(); ++k) {
+      const Side& s = kSides[k];
+      const float face = s.sign < 0 ? box.lo[s.axis] : box.hi[s.axis];
+      const float depth = std::max(
+          {(face - a[s.axis]) * s.sign, (face - b[s.axis]) * s.sign, (face - c[s.axis]) * s.sign});
+      const float skin = kShellDepth * ext[s.axis];  // a wall, its outer faces too
+      if (depth <= skin || (n[s.axis] * s.sign < -0.5f * len && depth <= reach[k] + skin))
+        return true;
+    }
+    const float low = std::max({a.y, b.y, c.y}) - box.lo.y,
+                high = box.hi.y - std::min({a.y, b.y, c.y});
+    return std::abs(n.y) > 0.9f * len && std::min(low, high) <= kWallSlab * ext.y;
+  };
+  const float near2 = kNearEye * kNearEye * glm::dot(ext, ext);
   std::array<double, 4> in_the_way{};
   for (size_t f = 0; f + 2 < indices.size(); f += 3) {
     const Vec3 a = positions[indices[f]], b = positions[indices[f + 1]],
                c = positions[indices[f + 2]];
+    if (part_of_the_shell(a, b, c)) continue;
     const Vec3 centroid = (a + b + c) * (1.0f / 3.0f);
-    if (glm::any(glm::lessThan(centroid, lo_in)) || glm::any(glm::greaterThan(centroid, hi_in)))
-      continue;
     const double area = 0.5 * double(glm::length(glm::cross(b - a, c - a)));
-    for (size_t k = 0; k < 4; ++k) {
+    for (size_t k = 0; k < eyes.size(); ++k) {
       const Vec3 d = centroid - eyes[k];
       in_the_way[k] += area / double(std::max(glm::dot(d, d), near2));
     }
   }
-  const size_t k =
-      size_t(std::min_element(in_the_way.begin(), in_the_way.end()) - in_the_way.begin());
-  cam.eye = eyes[k];
-  // The target: across the room from the corner, low.
-  const Vec3 at(k & 1u ? box.hi.x : box.lo.x, box.lo.y, k & 2u ? box.hi.z : box.lo.z);
+  // Ties (within rounding: a symmetric room) go to the first corner in kCorners' order.
+  size_t pick = 0;
+  for (size_t k = 1; k < in_the_way.size(); ++k)
+    if (in_the_way[k] < in_the_way[pick] * (1.0 - 1e-4)) pick = k;
+  cam.eye = eyes[pick];
+  // The target: low, kCornerTargetAcross of the way from the corner to the opposite one.
+  const Corner& c = kCorners[pick];
+  const Vec3 at(c.sx < 0 ? box.lo.x : box.hi.x, box.lo.y, c.sz < 0 ? box.lo.z : box.hi.z);
   cam.target = Vec3(at.x + (mid.x - at.x) * 2.0f * kCornerTargetAcross,
                     box.lo.y + kCornerTargetHeight * ext.y,
                     at.z + (mid.z - at.z) * 2.0f * kCornerTargetAcross);

@@ -12,7 +12,7 @@ namespace rad {
 /// Vertical field of view of the published Cornell box camera, degrees.
 inline constexpr float kDefaultFovDeg = 39.3f;
 /// Inside a closed room the default camera sees this far either side of its view, degrees: from
-/// a corner, the two walls meeting there run 45 degrees either side of the room's diagonal.
+/// a corner, the walls meeting there lie about 45 degrees either side of it.
 inline constexpr float kRoomHalfWidthDeg = 40.0f;
 
 /// A right-handed look-at pinhole camera. With eye (278, 273, -800), target (278, 273, 0) and up
@@ -46,9 +46,10 @@ CameraFrame camera_frame(const Camera& c, float aspect);
 /// the box looking at its centre, far enough for the side's face to fill the view (the Cornell
 /// box gives its published view). When even that side is closed (a room), the eye stands high in
 /// a corner, in front of both walls, and looks down across the room, seeing kRoomHalfWidthDeg
-/// either side (the vertical field of view from `aspect`): of the four corners, the one with the
-/// least in the way (what stands in the room, walls, floor and ceiling left out, weighed by area
-/// over squared distance from the eye). Up is +y.
+/// either side (the vertical field of view from `aspect`, kept within 39.3 to 100 degrees): of
+/// the four corners, the one with the least in the way (what stands in the room, its walls,
+/// floor and ceiling left out, weighed by area over squared distance from the eye); ties go to
+/// (-x, -z), then (+x, -z), (-x, +z), (+x, +z). Up is +y.
 Camera default_camera(std::span<const Vec3> positions, std::span<const uint32_t> indices,
                       float aspect);
 

@@ -108,7 +108,7 @@ TEST(Camera, DefaultForAClosedRoomStandsInsideIt) {
 
 // A room 5 x 2.7 x 4 m with a solid block in three of its four quarters: the eye stands in the
 // empty one, in front of its two walls and above the blocks, and sees each block's top.
-TEST(Camera, DefaultForAFurnishedRoomStandsInItsEmptiestCorner) {
+TEST(Camera, DefaultForAFurnishedRoomStandsInTheCornerWithTheLeastInTheWay) {
   const float w = 5.0f, h = 2.7f, d = 4.0f;
   for (int empty = 0; empty < 4; ++empty) {
     Soup s;
@@ -234,6 +234,36 @@ TEST(Camera, DefaultForAClosedRoomWithALeaningOrThickWallStandsInsideIt) {
     EXPECT_GT(glm::length(c.target - c.eye), 0.9f * std::min(w, d)) << thickness;
     EXPECT_GT(c.fov_y_deg, kDefaultFovDeg) << thickness;
   }
+}
+
+// A cabinet 30 cm deep hung on the wall beside one corner, 1.5 m up, in an otherwise empty
+// room: it would stand between that corner's eye and the room, so the eye takes another corner
+// (the walls, floor and ceiling themselves weigh nothing: empty, the room gets the first).
+TEST(Camera, DefaultForARoomKeepsTheEyeAwayFromAWallCabinet) {
+  const float w = 5.0f, h = 2.7f, d = 4.0f;
+  Soup s;
+  auto quad = [&](Vec3 a, Vec3 b, Vec3 c, Vec3 e) {
+    const uint32_t n = uint32_t(s.positions.size());
+    s.positions.insert(s.positions.end(), {a, b, c, e});
+    s.indices.insert(s.indices.end(), {n, n + 1, n + 2, n, n + 2, n + 3});
+  };
+  quad({0, 0, 0}, {0, 0, d}, {w, 0, d}, {w, 0, 0});
+  quad({0, h, 0}, {w, h, 0}, {w, h, d}, {0, h, d});
+  quad({0, 0, 0}, {0, h, 0}, {0, h, d}, {0, 0, d});
+  quad({w, 0, 0}, {w, 0, d}, {w, h, d}, {w, h, 0});
+  quad({0, 0, d}, {0, h, d}, {w, h, d}, {w, 0, d});
+  quad({0, 0, 0}, {w, 0, 0}, {w, h, 0}, {0, h, 0});
+  const Camera empty = default_camera(s.positions, s.indices, 1.0f);
+  const Vec3 lo(0.1f, 1.5f, 0.0f), hi(1.3f, 2.2f, 0.3f);  // against z = 0, by x = 0
+  quad({lo.x, hi.y, lo.z}, {lo.x, hi.y, hi.z}, {hi.x, hi.y, hi.z}, {hi.x, hi.y, lo.z});  // top
+  quad({lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, lo.y, hi.z}, {lo.x, lo.y, hi.z});  // bottom
+  quad({lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z});  // front
+  quad({lo.x, lo.y, lo.z}, {lo.x, lo.y, hi.z}, {lo.x, hi.y, hi.z}, {lo.x, hi.y, lo.z});  // -x
+  quad({hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, hi.y, hi.z}, {hi.x, lo.y, hi.z});  // +x
+  const Camera c = default_camera(s.positions, s.indices, 1.0f);
+  EXPECT_LT(empty.eye.x, 0.5f * w) << "an empty room: the first corner, (-x, -z)";
+  EXPECT_LT(empty.eye.z, 0.5f * d);
+  EXPECT_FALSE(c.eye.x < 0.5f * w && c.eye.z < 0.5f * d) << "the eye beside the cabinet";
 }
 
 TEST(Camera, SpecIsWhatParseCameraReads) {
