@@ -43,6 +43,21 @@ float parse_float(std::string_view s, std::string_view spec) {
   return v;
 }
 
+/// How far the deepest of corners `v` lies inside the face of `box` whose outward normal is
+/// `out_sign` along `axis` (0 or less: on it or beyond).
+float depth_inside(const Aabb& box, int axis, float out_sign, const std::array<Vec3, 3>& v) {
+  const float at = out_sign < 0 ? box.lo[axis] : box.hi[axis];
+  float in = 0.0f;
+  for (const Vec3& c : v) in = std::max(in, (at - c[axis]) * out_sign);
+  return in;
+}
+
+/// Whether a triangle with normal n (any length) faces into the box through that face, within
+/// 60 degrees.
+bool faces_in(const Vec3& n, int axis, float out_sign) {
+  return n[axis] * out_sign < -0.5f * glm::length(n);
+}
+
 /// How much of the side of `box` whose outward normal is `out_sign` along `axis` is closed: the
 /// fraction of a grid of points on its face that triangles cover, seen along the axis, counting
 /// the triangles that lie within `slab` of the face and face into the box (within 60 degrees).
@@ -55,7 +70,6 @@ float parse_float(std::string_view s, std::string_view spec) {
 float side_coverage(std::span<const Vec3> p, std::span<const uint32_t> idx, const Aabb& box,
                     int axis, float out_sign, float slab, float* reach) {
   const int u = axis == 2 ? 0 : 2;  // the face's horizontal axis; its vertical one is y
-  const float at = out_sign < 0 ? box.lo[axis] : box.hi[axis];
   const float cell_u = (box.hi[u] - box.lo[u]) / kCoverageCells;
   const float cell_y = (box.hi.y - box.lo.y) / kCoverageCells;
   *reach = 0.0f;
@@ -64,10 +78,9 @@ float side_coverage(std::span<const Vec3> p, std::span<const uint32_t> idx, cons
   std::vector<std::pair<float, size_t>> near;
   for (size_t f = 0; f + 2 < idx.size(); f += 3) {
     const std::array<Vec3, 3> v{p[idx[f]], p[idx[f + 1]], p[idx[f + 2]]};
-    float in = 0.0f;  // the deepest corner's distance inside the face
-    for (const Vec3& c : v) in = std::max(in, (at - c[axis]) * out_sign);
-    const Vec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
-    if (in <= slab && n[axis] * out_sign < -0.5f * glm::length(n)) near.emplace_back(in, f);
+    const float in = depth_inside(box, axis, out_sign, v);
+    if (in <= slab && faces_in(glm::cross(v[1] - v[0], v[2] - v[0]), axis, out_sign))
+      near.emplace_back(in, f);
   }
   std::stable_sort(near.begin(), near.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -204,45 +217,40 @@ Camera default_camera(std::span<const Vec3> positions, std::span<const uint32_t>
   // kShellDepth of one side's face, or facing into the room within its wall's reach
   // (side_coverage) and kShellDepth more, or lying flat within kWallSlab of the floor or the
   // ceiling (a rug too).
-  struct Corner {
-    float sx, sz;           // -1 or +1: the corner at box.lo or box.hi along x and z
-    size_t wall_x, wall_z;  // its walls' entries in kSides (and reach)
+  // The corners (-x, -z), (+x, -z), (-x, +z), (+x, +z): their sides along x and z (-1 or +1),
+  // and where the eye would stand in each, off both walls by their reach and kCornerStep more.
+  constexpr std::array<std::array<float, 2>, 4> kCorners{{{-1, -1}, {1, -1}, {-1, 1}, {1, 1}}};
+  const auto reach_of = [&](int axis, float sign) {  // kSides' order: -z, +z, -x, +x
+    return reach[size_t((axis == 0 ? 2 : 0) + (sign > 0 ? 1 : 0))];
   };
-  constexpr std::array<Corner, 4> kCorners{
-      {{-1.0f, -1.0f, 2, 0}, {1.0f, -1.0f, 3, 0}, {-1.0f, 1.0f, 2, 1}, {1.0f, 1.0f, 3, 1}}};
   std::array<Vec3, 4> eyes;
   for (size_t k = 0; k < kCorners.size(); ++k) {
-    const Corner& c = kCorners[k];
-    const float in_x = reach[c.wall_x] + kCornerStep * ext.x;
-    const float in_z = reach[c.wall_z] + kCornerStep * ext.z;
-    eyes[k] =
-        Vec3(c.sx < 0 ? box.lo.x + in_x : box.hi.x - in_x, box.lo.y + kCornerEyeHeight * ext.y,
-             c.sz < 0 ? box.lo.z + in_z : box.hi.z - in_z);
+    const auto [sx, sz] = kCorners[k];
+    const float in_x = reach_of(0, sx) + kCornerStep * ext.x;
+    const float in_z = reach_of(2, sz) + kCornerStep * ext.z;
+    eyes[k] = Vec3(sx < 0 ? box.lo.x + in_x : box.hi.x - in_x, box.lo.y + kCornerEyeHeight * ext.y,
+                   sz < 0 ? box.lo.z + in_z : box.hi.z - in_z);
   }
-  const auto part_of_the_shell = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
-    const Vec3 n = glm::cross(b - a, c - a);
-    const float len = glm::length(n);
+  const auto part_of_the_shell = [&](const std::array<Vec3, 3>& v, const Vec3& n) {
     for (size_t k = 0; k < kSides.size(); ++k) {
       const Side& s = kSides[k];
-      const float face = s.sign < 0 ? box.lo[s.axis] : box.hi[s.axis];
-      const float depth = std::max(
-          {(face - a[s.axis]) * s.sign, (face - b[s.axis]) * s.sign, (face - c[s.axis]) * s.sign});
+      const float depth = depth_inside(box, s.axis, s.sign, v);
       const float skin = kShellDepth * ext[s.axis];  // a wall, its outer faces too
-      if (depth <= skin || (n[s.axis] * s.sign < -0.5f * len && depth <= reach[k] + skin))
-        return true;
+      if (depth <= skin || (faces_in(n, s.axis, s.sign) && depth <= reach[k] + skin)) return true;
     }
-    const float low = std::max({a.y, b.y, c.y}) - box.lo.y,
-                high = box.hi.y - std::min({a.y, b.y, c.y});
-    return std::abs(n.y) > 0.9f * len && std::min(low, high) <= kWallSlab * ext.y;
+    const float low = std::max({v[0].y, v[1].y, v[2].y}) - box.lo.y,
+                high = box.hi.y - std::min({v[0].y, v[1].y, v[2].y});
+    return std::abs(n.y) > 0.9f * glm::length(n) && std::min(low, high) <= kWallSlab * ext.y;
   };
   const float near2 = kNearEye * kNearEye * glm::dot(ext, ext);
   std::array<double, 4> in_the_way{};
   for (size_t f = 0; f + 2 < indices.size(); f += 3) {
-    const Vec3 a = positions[indices[f]], b = positions[indices[f + 1]],
-               c = positions[indices[f + 2]];
-    if (part_of_the_shell(a, b, c)) continue;
-    const Vec3 centroid = (a + b + c) * (1.0f / 3.0f);
-    const double area = 0.5 * double(glm::length(glm::cross(b - a, c - a)));
+    const std::array<Vec3, 3> v{positions[indices[f]], positions[indices[f + 1]],
+                                positions[indices[f + 2]]};
+    const Vec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
+    if (part_of_the_shell(v, n)) continue;
+    const Vec3 centroid = (v[0] + v[1] + v[2]) * (1.0f / 3.0f);
+    const double area = 0.5 * double(glm::length(n));
     for (size_t k = 0; k < eyes.size(); ++k) {
       const Vec3 d = centroid - eyes[k];
       in_the_way[k] += area / double(std::max(glm::dot(d, d), near2));
@@ -254,8 +262,8 @@ Camera default_camera(std::span<const Vec3> positions, std::span<const uint32_t>
     if (in_the_way[k] < in_the_way[pick] * (1.0 - 1e-4)) pick = k;
   cam.eye = eyes[pick];
   // The target: low, kCornerTargetAcross of the way from the corner to the opposite one.
-  const Corner& c = kCorners[pick];
-  const Vec3 at(c.sx < 0 ? box.lo.x : box.hi.x, box.lo.y, c.sz < 0 ? box.lo.z : box.hi.z);
+  const auto [sx, sz] = kCorners[pick];
+  const Vec3 at(sx < 0 ? box.lo.x : box.hi.x, box.lo.y, sz < 0 ? box.lo.z : box.hi.z);
   cam.target = Vec3(at.x + (mid.x - at.x) * 2.0f * kCornerTargetAcross,
                     box.lo.y + kCornerTargetHeight * ext.y,
                     at.z + (mid.z - at.z) * 2.0f * kCornerTargetAcross);

@@ -15,6 +15,31 @@ namespace {
 struct Soup {
   std::vector<Vec3> positions;
   std::vector<uint32_t> indices;
+  /// Quad a b c d as two triangles, its front by the right-hand rule.
+  void quad(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+    const uint32_t n = uint32_t(positions.size());
+    positions.insert(positions.end(), {a, b, c, d});
+    indices.insert(indices.end(), {n, n + 1, n + 2, n, n + 2, n + 3});
+  }
+  /// The box [0, size] with its six faces facing in: a room.
+  void room(Vec3 size) {
+    const float w = size.x, h = size.y, d = size.z;
+    quad({0, 0, 0}, {0, 0, d}, {w, 0, d}, {w, 0, 0});  // floor
+    quad({0, h, 0}, {w, h, 0}, {w, h, d}, {0, h, d});  // ceiling
+    quad({0, 0, 0}, {0, h, 0}, {0, h, d}, {0, 0, d});  // x = 0
+    quad({w, 0, 0}, {w, 0, d}, {w, h, d}, {w, h, 0});  // x = w
+    quad({0, 0, d}, {0, h, d}, {w, h, d}, {w, 0, d});  // z = d
+    quad({0, 0, 0}, {w, 0, 0}, {w, h, 0}, {0, h, 0});  // z = 0
+  }
+  /// The box [lo, hi] with its six faces facing out: a solid.
+  void block(Vec3 lo, Vec3 hi) {
+    quad({lo.x, hi.y, lo.z}, {lo.x, hi.y, hi.z}, {hi.x, hi.y, hi.z}, {hi.x, hi.y, lo.z});  // +y
+    quad({lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, lo.y, hi.z}, {lo.x, lo.y, hi.z});  // -y
+    quad({lo.x, lo.y, lo.z}, {lo.x, hi.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, lo.y, lo.z});  // -z
+    quad({lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z});  // +z
+    quad({lo.x, lo.y, lo.z}, {lo.x, lo.y, hi.z}, {lo.x, hi.y, hi.z}, {lo.x, hi.y, lo.z});  // -x
+    quad({hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, hi.y, hi.z}, {hi.x, lo.y, hi.z});  // +x
+  }
 };
 
 Soup load_scene(const std::string& name) {
@@ -112,31 +137,15 @@ TEST(Camera, DefaultForAFurnishedRoomStandsInTheCornerWithTheLeastInTheWay) {
   const float w = 5.0f, h = 2.7f, d = 4.0f;
   for (int empty = 0; empty < 4; ++empty) {
     Soup s;
-    auto quad = [&](Vec3 a, Vec3 b, Vec3 c, Vec3 e) {  // front by the right-hand rule
-      const uint32_t n = uint32_t(s.positions.size());
-      s.positions.insert(s.positions.end(), {a, b, c, e});
-      s.indices.insert(s.indices.end(), {n, n + 1, n + 2, n, n + 2, n + 3});
-    };
-    // The room's faces, facing in.
-    quad({0, 0, 0}, {0, 0, d}, {w, 0, d}, {w, 0, 0});  // floor
-    quad({0, h, 0}, {w, h, 0}, {w, h, d}, {0, h, d});  // ceiling
-    quad({0, 0, 0}, {0, h, 0}, {0, h, d}, {0, 0, d});  // x = 0
-    quad({w, 0, 0}, {w, 0, d}, {w, h, d}, {w, h, 0});  // x = w
-    quad({0, 0, d}, {0, h, d}, {w, h, d}, {w, 0, d});  // z = d
-    quad({0, 0, 0}, {w, 0, 0}, {w, h, 0}, {0, h, 0});  // z = 0
+    s.room({w, h, d});
     const std::array<Vec3, 4> corners{Vec3(0, 0, 0), Vec3(w, 0, 0), Vec3(0, 0, d), Vec3(w, 0, d)};
     std::vector<Vec3> tops;
     for (int k = 0; k < 4; ++k) {
       if (k == empty) continue;
-      // A block 1 m wide, 1 m high, 0.5 m from the corner's two walls; its faces facing out.
+      // A block 1 m wide, 1 m high, 0.5 m from the corner's two walls.
       const Vec3 lo(corners[k].x > 0 ? w - 1.5f : 0.5f, 0.0f, corners[k].z > 0 ? d - 1.5f : 0.5f);
-      const Vec3 hi = lo + Vec3(1.0f);
-      quad({lo.x, hi.y, lo.z}, {lo.x, hi.y, hi.z}, {hi.x, hi.y, hi.z}, {hi.x, hi.y, lo.z});  // top
-      quad({lo.x, lo.y, lo.z}, {lo.x, hi.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, lo.y, lo.z});  // -z
-      quad({lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z});  // +z
-      quad({lo.x, lo.y, lo.z}, {lo.x, lo.y, hi.z}, {lo.x, hi.y, hi.z}, {lo.x, hi.y, lo.z});  // -x
-      quad({hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, hi.y, hi.z}, {hi.x, lo.y, hi.z});  // +x
-      tops.push_back((lo + hi) * 0.5f + Vec3(0, 0.5f, 0));
+      s.block(lo, lo + Vec3(1.0f));
+      tops.push_back(lo + Vec3(0.5f, 1.0f, 0.5f));
     }
     const Camera c = default_camera(s.positions, s.indices, 1.0f);
     const Vec3 corner = corners[size_t(empty)];
@@ -164,17 +173,7 @@ TEST(Camera, DefaultForAFurnishedRoomStandsInTheCornerWithTheLeastInTheWay) {
 // backs.
 TEST(Camera, DefaultForAClosedObjectStandsOutsideIt) {
   Soup s;
-  auto quad = [&](Vec3 a, Vec3 b, Vec3 c, Vec3 d) {  // front by the right-hand rule
-    const uint32_t n = uint32_t(s.positions.size());
-    s.positions.insert(s.positions.end(), {a, b, c, d});
-    s.indices.insert(s.indices.end(), {n, n + 1, n + 2, n, n + 2, n + 3});
-  };
-  quad({0, 0, 0}, {2, 0, 0}, {2, 0, 2}, {0, 0, 2});  // y = 0, normal -y
-  quad({0, 1, 0}, {0, 1, 2}, {2, 1, 2}, {2, 1, 0});  // y = 1, +y
-  quad({0, 0, 0}, {0, 0, 2}, {0, 1, 2}, {0, 1, 0});  // x = 0, -x
-  quad({2, 0, 0}, {2, 1, 0}, {2, 1, 2}, {2, 0, 2});  // x = 2, +x
-  quad({0, 0, 0}, {0, 1, 0}, {2, 1, 0}, {2, 0, 0});  // z = 0, -z
-  quad({0, 0, 2}, {2, 0, 2}, {2, 1, 2}, {0, 1, 2});  // z = 2, +z
+  s.block({0, 0, 0}, {2, 1, 2});
   for (size_t f = 0; f < s.indices.size();
        f += 3) {  // each face's normal points away from (1,.5,1)
     const Vec3 a = s.positions[s.indices[f]], b = s.positions[s.indices[f + 1]],
@@ -196,33 +195,21 @@ TEST(Camera, DefaultForAClosedRoomWithALeaningOrThickWallStandsInsideIt) {
   const auto red_x = [&](float y) { return 552.8f + (w - 552.8f) * y / h; };
   for (const float thickness : {0.0f, 20.0f}) {
     Soup s;
-    auto quad = [&](Vec3 a, Vec3 b, Vec3 c, Vec3 e) {  // front by the right-hand rule
-      const uint32_t n = uint32_t(s.positions.size());
-      s.positions.insert(s.positions.end(), {a, b, c, e});
-      s.indices.insert(s.indices.end(), {n, n + 1, n + 2, n, n + 2, n + 3});
-    };
     // Inside faces, each facing the room's centre.
-    quad({0, 0, 0}, {0, 0, d}, {red_x(0), 0, d}, {red_x(0), 0, 0});  // floor, +y
-    quad({0, h, 0}, {w, h, 0}, {w, h, d}, {0, h, d});                // ceiling, -y
-    quad({0, 0, 0}, {0, h, 0}, {0, h, d}, {0, 0, d});                // green wall, +x
-    quad({red_x(0), 0, 0}, {red_x(0), 0, d}, {w, h, d}, {w, h, 0});  // red wall, -x
-    quad({0, 0, d}, {0, h, d}, {w, h, d}, {red_x(0), 0, d});         // back wall, -z
-    quad({0, 0, 0}, {red_x(0), 0, 0}, {w, h, 0}, {0, h, 0});         // front wall, +z
+    s.quad({0, 0, 0}, {0, 0, d}, {red_x(0), 0, d}, {red_x(0), 0, 0});  // floor, +y
+    s.quad({0, h, 0}, {w, h, 0}, {w, h, d}, {0, h, d});                // ceiling, -y
+    s.quad({0, 0, 0}, {0, h, 0}, {0, h, d}, {0, 0, d});                // green wall, +x
+    s.quad({red_x(0), 0, 0}, {red_x(0), 0, d}, {w, h, d}, {w, h, 0});  // red wall, -x
+    s.quad({0, 0, d}, {0, h, d}, {w, h, d}, {red_x(0), 0, d});         // back wall, -z
+    s.quad({0, 0, 0}, {red_x(0), 0, 0}, {w, h, 0}, {0, h, 0});         // front wall, +z
     const Vec3 centre(w / 2, h / 2, d / 2);
     for (size_t f = 0; f < s.indices.size(); f += 3) {
       const Vec3 a = s.positions[s.indices[f]], b = s.positions[s.indices[f + 1]],
                  c = s.positions[s.indices[f + 2]];
       ASSERT_GT(glm::dot(glm::cross(b - a, c - a), centre - a), 0.0f) << f;
     }
-    if (thickness > 0.0f) {  // the walls' outer faces, facing out
-      const float t = thickness;
-      quad({-t, -t, -t}, {w + t, -t, -t}, {w + t, -t, d + t}, {-t, -t, d + t});
-      quad({-t, h + t, -t}, {-t, h + t, d + t}, {w + t, h + t, d + t}, {w + t, h + t, -t});
-      quad({-t, -t, -t}, {-t, -t, d + t}, {-t, h + t, d + t}, {-t, h + t, -t});
-      quad({w + t, -t, -t}, {w + t, h + t, -t}, {w + t, h + t, d + t}, {w + t, -t, d + t});
-      quad({-t, -t, -t}, {-t, h + t, -t}, {w + t, h + t, -t}, {w + t, -t, -t});
-      quad({-t, -t, d + t}, {w + t, -t, d + t}, {w + t, h + t, d + t}, {-t, h + t, d + t});
-    }
+    // The walls' outer faces, facing out.
+    if (thickness > 0.0f) s.block(Vec3(-thickness), Vec3(w, h, d) + thickness);
     const Camera c = default_camera(s.positions, s.indices, 1.0f);
     EXPECT_GT(c.eye.x, 0.0f) << thickness;
     EXPECT_LT(c.eye.x, red_x(c.eye.y)) << thickness << ": behind the red wall";
@@ -242,24 +229,9 @@ TEST(Camera, DefaultForAClosedRoomWithALeaningOrThickWallStandsInsideIt) {
 TEST(Camera, DefaultForARoomKeepsTheEyeAwayFromAWallCabinet) {
   const float w = 5.0f, h = 2.7f, d = 4.0f;
   Soup s;
-  auto quad = [&](Vec3 a, Vec3 b, Vec3 c, Vec3 e) {
-    const uint32_t n = uint32_t(s.positions.size());
-    s.positions.insert(s.positions.end(), {a, b, c, e});
-    s.indices.insert(s.indices.end(), {n, n + 1, n + 2, n, n + 2, n + 3});
-  };
-  quad({0, 0, 0}, {0, 0, d}, {w, 0, d}, {w, 0, 0});
-  quad({0, h, 0}, {w, h, 0}, {w, h, d}, {0, h, d});
-  quad({0, 0, 0}, {0, h, 0}, {0, h, d}, {0, 0, d});
-  quad({w, 0, 0}, {w, 0, d}, {w, h, d}, {w, h, 0});
-  quad({0, 0, d}, {0, h, d}, {w, h, d}, {w, 0, d});
-  quad({0, 0, 0}, {w, 0, 0}, {w, h, 0}, {0, h, 0});
+  s.room({w, h, d});
   const Camera empty = default_camera(s.positions, s.indices, 1.0f);
-  const Vec3 lo(0.1f, 1.5f, 0.0f), hi(1.3f, 2.2f, 0.3f);  // against z = 0, by x = 0
-  quad({lo.x, hi.y, lo.z}, {lo.x, hi.y, hi.z}, {hi.x, hi.y, hi.z}, {hi.x, hi.y, lo.z});  // top
-  quad({lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, lo.y, hi.z}, {lo.x, lo.y, hi.z});  // bottom
-  quad({lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z});  // front
-  quad({lo.x, lo.y, lo.z}, {lo.x, lo.y, hi.z}, {lo.x, hi.y, hi.z}, {lo.x, hi.y, lo.z});  // -x
-  quad({hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, hi.y, hi.z}, {hi.x, lo.y, hi.z});  // +x
+  s.block({0.1f, 1.5f, 0.0f}, {1.3f, 2.2f, 0.3f});  // against z = 0, by x = 0
   const Camera c = default_camera(s.positions, s.indices, 1.0f);
   EXPECT_LT(empty.eye.x, 0.5f * w) << "an empty room: the first corner, (-x, -z)";
   EXPECT_LT(empty.eye.z, 0.5f * d);
@@ -287,16 +259,11 @@ TEST(Camera, SpecIsWhatParseCameraReads) {
 TEST(Camera, DefaultPrefersTheOpenSide) {
   // A box open toward +x only: floor, ceiling and the -x, -z, +z walls.
   Soup s;
-  auto quad = [&](Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
-    const uint32_t n = uint32_t(s.positions.size());
-    s.positions.insert(s.positions.end(), {a, b, c, d});
-    s.indices.insert(s.indices.end(), {n, n + 1, n + 2, n, n + 2, n + 3});
-  };
-  quad({0, 0, 0}, {0, 0, 2}, {2, 0, 2}, {2, 0, 0});
-  quad({0, 1, 0}, {2, 1, 0}, {2, 1, 2}, {0, 1, 2});
-  quad({0, 0, 0}, {0, 1, 0}, {0, 1, 2}, {0, 0, 2});
-  quad({0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0});
-  quad({0, 0, 2}, {0, 1, 2}, {2, 1, 2}, {2, 0, 2});
+  s.quad({0, 0, 0}, {0, 0, 2}, {2, 0, 2}, {2, 0, 0});
+  s.quad({0, 1, 0}, {2, 1, 0}, {2, 1, 2}, {0, 1, 2});
+  s.quad({0, 0, 0}, {0, 1, 0}, {0, 1, 2}, {0, 0, 2});
+  s.quad({0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0});
+  s.quad({0, 0, 2}, {0, 1, 2}, {2, 1, 2}, {2, 0, 2});
   const Camera c = default_camera(s.positions, s.indices, 1.0f);
   EXPECT_GT(c.eye.x, 2.0f);
   EXPECT_NEAR(c.eye.z, 1.0f, 1e-5f);
