@@ -78,7 +78,7 @@ DirectLight make_direct_light(const SolverState& s, uint32_t variants) {
         e.insert(e.end(), src.end_y.begin(), src.end_y.end());
         e.insert(e.end(), src.end_z.begin(), src.end_z.end());
       } else {
-        draw_ray_ends(d.sources[i], k, s.scene.shadow_offset, e);
+        draw_ray_ends(d.sources[i], k, s.scene.shadow_offset, nullptr, e);
       }
     }
   }

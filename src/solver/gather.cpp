@@ -246,12 +246,21 @@ constexpr uint32_t kProbeRounds = 2;
 // scratch.clear[j] for the active samples j < na, from their answers in scratch.blocked: 1 where
 // they all find the source clear and so do the rays to its corners; 0 where they all find it
 // hidden and so do the corners and kProbeRounds rounds; otherwise (a penumbra, or a gap the
-// probes see through), for a source that gets them (penumbra_source), st.penumbra_rays more
-// rounds in all, round r to the ends draw_ray_ends gives the key of (x, r), and the part of each
-// sample's rays that reach it. The extra rounds' answers are not kept: their ends move with the
-// point.
+// probes see through), for a source that gets them (penumbra_source), the part of
+// st.penumbra_rays rounds' rays that reach it, round r to the ends draw_ray_ends gives the key of
+// (x, r), each stratum's end drawn by what its fine points add to x's gain (their kernel at x
+// times their unshot radiosity). Drawn so, the part of a stratum's rays that reach x estimates
+// its visible part weighed as its gain is: up close the kernel varies across a stratum many
+// times over (a face 15 cm from a window sees a 5 cm band along its near edge through a gap
+// under a board; the band weighs three times its share of the area), and ends drawn by area
+// would read the band at its area. The first pass's answers, one per stratum at fixed ends,
+// count too when `fixed_count`: far from the source (beyond its near field), where the kernel
+// varies little across a stratum, they are samples as good as the drawn ones and spread evenly;
+// near it they would weigh each stratum's light at its power centroid. Where the probes found
+// the source they never count: all hidden is why the point probed. The rounds' answers are not
+// kept: their ends move with the point.
 void penumbra_rounds(const Vec3& x, const Vec3& n, const ShotSource& src, size_t na,
-                     const VisibilityBackend& vis, const GatherSettings& st,
+                     bool fixed_count, const VisibilityBackend& vis, const GatherSettings& st,
                      GatherScratch& scratch) {
   scratch.clear.resize(na);
   size_t blocked = 0;
@@ -269,10 +278,17 @@ void penumbra_rounds(const Vec3& x, const Vec3& n, const ShotSource& src, size_t
   const uint32_t probes = agree ? std::min(kProbeRounds, st.penumbra_rays) : 0;
   const uint64_t seed = point_seed(x);
   const size_t m = src.end_x.size();
+  const SampleLanes& fine = src.fine_sample;
+  scratch.draw_weight.resize(fine.size());
+  add_kernels<false>(fine, values_of(fine), x, n, nullptr, nullptr, scratch.draw_weight.data());
+  for (size_t i = 0; i < fine.size(); ++i)
+    scratch.draw_weight[i] *= std::abs(mean_component(fine.value(i)));
+  fixed_count = fixed_count && probes == 0;
+  if (!fixed_count) std::fill(scratch.clear.begin(), scratch.clear.end(), 0.0f);
   scratch.blocked.resize(na);
   for (uint32_t r = 1; r <= st.penumbra_rays; ++r) {
     draw_ray_ends(src, seed ^ (uint64_t(r) * 0x9e3779b97f4a7c15ull), st.shadow_offset,
-                  scratch.round_ends);
+                  scratch.draw_weight.data(), scratch.round_ends);
     const float* e = scratch.round_ends.data();
     trace_fan_to(x, n, e, e + m, e + 2 * m, nullptr, na, vis, st, scratch, scratch.blocked.data());
     for (size_t j = 0; j < na; ++j) scratch.clear[j] += scratch.blocked[j] ? 0.0f : 1.0f;
@@ -280,9 +296,7 @@ void penumbra_rounds(const Vec3& x, const Vec3& n, const ShotSource& src, size_t
                                    [](float c) { return c == 0.0f; }))
       return;
   }
-  // A gap the probes found: the first pass's answers are left out of the mean, for its fixed
-  // ends were all hidden (which is why the point probed) and would weigh the mean towards none.
-  const float mean = 1.0f / float(st.penumbra_rays + (probes > 0 ? 0 : 1));
+  const float mean = 1.0f / float(st.penumbra_rays + (fixed_count ? 1 : 0));
   for (size_t j = 0; j < na; ++j) scratch.clear[j] *= mean;
 }
 
@@ -464,7 +478,7 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
   const bool traced = st.shadows && !cut && na + ne > 0;
   if (traced) {
     trace_active(x, n, src, na, vis, st, scratch, kept);
-    penumbra_rounds(x, n, src, na, vis, st, scratch);
+    penumbra_rounds(x, n, src, na, !(near || fine_eq7), vis, st, scratch);
     if (ne > 0) {
       scratch.blocked.resize(ne);
       trace_edges(na, ne, scratch.blocked.data());

@@ -22,6 +22,7 @@ struct GatherScratch {
   std::vector<uint32_t> unknown;      // active samples (indices into `active`) with no kept answer
   std::vector<float> coarse_visible;  // near field: visible part of each coarse sample
   std::vector<float> round_ends;      // a penumbra round's ends (draw_ray_ends)
+  std::vector<float> draw_weight;     // penumbra rounds: each fine sample's part of the gain
   std::vector<float> clear;           // per active sample, the part of its rays not blocked
   std::vector<Vec3> group_gain;       // with light groups: each group's part of a gain
   std::vector<Vec3> group_all, group_major;  // regather_shots' sums per group (refine.h)

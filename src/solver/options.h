@@ -70,8 +70,9 @@ struct SolverOptions {
   float roulette = 1e-2f;
   /// Penumbra rays: where a vertex's shadow rays to a shot's samples disagree (some blocked,
   /// some not: it sees part of the source), or its rays to the source's corners disagree with
-  /// them, this many more rays per sample, each to a point of the sample's stratum drawn by
-  /// power from a hash of the vertex, and the sample's visibility is the mean. Every vertex sees
+  /// them, this many more rays per sample, each to a point of the sample's stratum drawn by a
+  /// hash of the vertex with the odds of the light that point gives it, and the sample's
+  /// visibility is the mean of these rays' answers. Every vertex sees
   /// the same points of a source through its first rays, so a penumbra would come in steps of
   /// one sample; the vertices that see all of a source or none of it pay nothing more but the
   /// corners' rays. Only for the shots of kPenumbraSampleShare. 0: off (a penumbra in steps).

@@ -282,7 +282,8 @@ void aim_roulette(ShotSource& src, float level, int64_t shot) {
   src.roulette_draw = open_unit_draw(splitmix64(uint64_t(shot)));
 }
 
-void draw_ray_ends(const ShotSource& src, uint64_t key, float offset, std::vector<float>& out) {
+void draw_ray_ends(const ShotSource& src, uint64_t key, float offset, const float* weights,
+                   std::vector<float>& out) {
   const size_t n = src.end_x.size();
   out.resize(3 * n);
   std::copy(src.end_x.begin(), src.end_x.end(), out.begin());
@@ -297,9 +298,13 @@ void draw_ray_ends(const ShotSource& src, uint64_t key, float offset, std::vecto
     const uint32_t g = src.fine_group_parent[group];
     size_t last = group;
     while (last < groups && src.fine_group_parent[last] == g) ++last;
+    auto weight = [&](size_t i) {
+      return weights ? double(weights[i])
+                     : double(f.area[i]) * std::abs(double(mean_component(f.value(i))));
+    };
     double power = 0.0, area = 0.0;
     for (size_t i = group * lanes; i < last * lanes; ++i) {
-      power += double(f.area[i]) * std::abs(double(mean_component(f.value(i))));
+      power += weight(i);
       area += double(f.area[i]);
     }
     const bool by_power = power > 0.0;
@@ -310,8 +315,7 @@ void draw_ray_ends(const ShotSource& src, uint64_t key, float offset, std::vecto
       double acc = 0.0;
       size_t pick = group * lanes;
       for (size_t i = group * lanes; i < last * lanes; ++i) {
-        const double w = by_power ? double(f.area[i]) * std::abs(double(mean_component(f.value(i))))
-                                  : double(f.area[i]);
+        const double w = by_power ? weight(i) : double(f.area[i]);
         if (w <= 0.0) continue;
         pick = i;
         acc += w;
