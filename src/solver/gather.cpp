@@ -258,10 +258,11 @@ constexpr uint32_t kProbeRounds = 2;
 // varies little across a stratum, they are samples as good as the drawn ones and spread evenly;
 // near it they would weigh each stratum's light at its power centroid. Where the probes found
 // the source they never count: all hidden is why the point probed. The rounds' answers are not
-// kept: their ends move with the point.
+// kept: their ends move with the point. `fine_kernel`: the fine samples' kernels at x where
+// the caller has them already, else null.
 void penumbra_rounds(const Vec3& x, const Vec3& n, const ShotSource& src, size_t na,
-                     bool fixed_count, const VisibilityBackend& vis, const GatherSettings& st,
-                     GatherScratch& scratch) {
+                     bool fixed_count, const float* fine_kernel, const VisibilityBackend& vis,
+                     const GatherSettings& st, GatherScratch& scratch) {
   scratch.clear.resize(na);
   size_t blocked = 0;
   for (size_t j = 0; j < na; ++j) {
@@ -280,9 +281,13 @@ void penumbra_rounds(const Vec3& x, const Vec3& n, const ShotSource& src, size_t
   const size_t m = src.end_x.size();
   const SampleLanes& fine = src.fine_sample;
   scratch.draw_weight.resize(fine.size());
-  add_kernels<false>(fine, values_of(fine), x, n, nullptr, nullptr, scratch.draw_weight.data());
-  for (size_t i = 0; i < fine.size(); ++i)
-    scratch.draw_weight[i] *= std::abs(mean_component(fine.value(i)));
+  float* const w = scratch.draw_weight.data();
+  if (fine_kernel) {
+    std::copy(fine_kernel, fine_kernel + fine.size(), w);
+  } else {
+    add_kernels<false>(fine, values_of(fine), x, n, nullptr, nullptr, w);
+  }
+  for (size_t i = 0; i < fine.size(); ++i) w[i] *= std::abs(mean_component(fine.value(i)));
   fixed_count = fixed_count && probes == 0;
   if (!fixed_count) std::fill(scratch.clear.begin(), scratch.clear.end(), 0.0f);
   scratch.blocked.resize(na);
@@ -478,7 +483,10 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
   const bool traced = st.shadows && !cut && na + ne > 0;
   if (traced) {
     trace_active(x, n, src, na, vis, st, scratch, kept);
-    penumbra_rounds(x, n, src, na, !(near || fine_eq7), vis, st, scratch);
+    // The fixed ends count beyond the near field, whichever way the form factor is taken.
+    const bool near_field = glm::dot(x - src.centroid, src.axis) < src.near_distance;
+    penumbra_rounds(x, n, src, na, !(near_field || fine_eq7), cut_by_plane ? fine_k : nullptr, vis,
+                    st, scratch);
     if (ne > 0) {
       scratch.blocked.resize(ne);
       trace_edges(na, ne, scratch.blocked.data());

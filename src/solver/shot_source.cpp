@@ -309,7 +309,9 @@ void draw_ray_ends(const ShotSource& src, uint64_t key, float offset, const floa
     }
     const bool by_power = power > 0.0;
     const double total = by_power ? power : area;
-    if (total > 0.0 && g < n) {
+    // Weighed by a receiver, a stratum none of whose points gives it anything keeps its end: an
+    // end drawn by area might lie behind the receiver's tangent plane.
+    if (total > 0.0 && g < n && (by_power || !weights)) {
       const double draw =
           (double(splitmix64(key * 0x100000001b3ull + g) >> 11) + 0.5) * 0x1p-53 * total;
       double acc = 0.0;

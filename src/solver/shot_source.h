@@ -173,8 +173,9 @@ ShotSource make_emission_source(const SolverState& s, int32_t c);
 /// Set `key`'s shadow-ray ends for `src`, x then y then z (3 x its ends) in `out`: each
 /// stratum's ray ends at one of the stratum's fine points, drawn with probability proportional
 /// to `weights` (one per lane of src.fine_sample: what the lane adds to a receiver's gain) or,
-/// where null, to its power (area x |mean channel|), or to its area where the stratum has none
-/// of either, by a fixed hash of (key, stratum), at a point of the fine point's cell
+/// where null, to its power (area x |mean channel|), or to its area where the stratum has no
+/// power (with `weights` all 0 in a stratum, it keeps the shot's end), by a fixed hash of
+/// (key, stratum), at a point of the fine point's cell
 /// (fine_cell_u, fine_cell_v: on the source) drawn uniformly by another; moved off the surface
 /// by `offset` as the shot's own ends are. A stratum without fine points keeps the shot's end.
 /// The same key gives the same ends on every run, thread and rank; different keys see a

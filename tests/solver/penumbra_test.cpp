@@ -169,9 +169,9 @@ TEST(Penumbra, ThroughAGapNarrowerThanAStratumTheProbesFindTheLamp) {
 
 // A lamp 1.2 m square, 15 cm over the floor, with a black board 5 cm under it over x >= 0. From
 // floor points 10 cm short of the lamp's edge (x = -0.1) the board hides all of the lamp but a
-// band 5 cm wide along its near edge (x from 0 to 0.05), a sixth of the nearest strata's width
-// but, so close, near half of their light: the rounds' ends, drawn by what each point of a
-// stratum gives, see the band at its weight, not at its area.
+// band 5 cm wide along its near edge (x from 0 to 0.05): a fifth of the nearest strata's width
+// (5 x 5 strata, 24 cm) but, so close, near half of their light. The rounds' ends, drawn by what
+// each point of a stratum gives, see the band at its weight, not at its area.
 TEST(Penumbra, ABandOfALampCloseByCountsAsMuchAsItGives) {
   constexpr float lamp_y = 0.15f, board_y = 0.1f, size = 1.2f, half = 0.6f;
   SceneDescription d;
@@ -184,6 +184,7 @@ TEST(Penumbra, ABandOfALampCloseByCountsAsMuchAsItGives) {
            {0, lamp_y, half}, Vec3(0.0f), Vec3(kLampEmission));
   const Umbra u(std::move(d), 6);
   const ShotSource src = u.lamp();
+  ASSERT_EQ(src.sample_count, 25u);
   const float band = 0.1f * lamp_y / board_y - 0.1f;  // 0.05: the rays past the board's edge
   double exact = 0.0, with = 0.0;
   const int points = 21;
@@ -193,12 +194,11 @@ TEST(Penumbra, ABandOfALampCloseByCountsAsMuchAsItGives) {
         kLampEmission * rectangle_factor(0.1, 0.1 + band, -half - z, half - z, lamp_y) / points;
     with += u.gain(src, -0.1f, z, 8) / points;
   }
-  RecordProperty("strata", std::to_string(src.sample_count));
   RecordProperty("exact", std::to_string(exact));
   RecordProperty("with", std::to_string(with));
-  // Ends drawn by area found 47% of the exact light. The rest of the shortfall (measured: 10%):
-  // within the fine point's cell drawn (6 cm wide here) the end is drawn by area, and across
-  // that cell the light still varies twofold.
+  // Drawn by power, the ends would find 47% of the exact light. What is still short (10%): the
+  // end is drawn by area within the fine point's cell (8 cm wide here), across which the light
+  // still varies threefold.
   EXPECT_NEAR(with, exact, 0.15 * exact);
 }
 
