@@ -406,8 +406,8 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
   float* const fine_k = (scratch.fine_weight.resize(nf), scratch.fine_weight.data());
   float fine_sum = 0.0f;
   Vec3 fine_unoccluded(0.0f);
-  const bool near =
-      ff && !src.fine_sample.empty() && glm::dot(x - src.centroid, src.axis) < src.near_distance;
+  const bool near_field = glm::dot(x - src.centroid, src.axis) < src.near_distance;
+  const bool near = ff && !src.fine_sample.empty() && near_field;
   bool cut_by_plane = near && lowest_above(src.box, x, n) < 0.0f;
   if (cut_by_plane) {
     const KernelSums fs = add_kernels<false>(src.fine_sample, values_of(src.fine_sample), x, n,
@@ -484,7 +484,6 @@ Vec3 gather_all(const Vec3& x_vertex, const Vec3& n, const Vec3& centroid, const
   if (traced) {
     trace_active(x, n, src, na, vis, st, scratch, kept);
     // The fixed ends count beyond the near field, whichever way the form factor is taken.
-    const bool near_field = glm::dot(x - src.centroid, src.axis) < src.near_distance;
     penumbra_rounds(x, n, src, na, !(near_field || fine_eq7), cut_by_plane ? fine_k : nullptr, vis,
                     st, scratch);
     if (ne > 0) {
