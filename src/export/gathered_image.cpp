@@ -21,13 +21,13 @@ namespace rad {
 
 namespace {
 
-// Sets of shadow-ray ends per source (direct_light.h): a subsample reads one, drawn from its
-// pixel and its place in it.
+// Sets of shadow-ray ends per source (direct_light.h): a subsample's first rays end at one,
+// drawn from its pixel and its place in it, so neighbouring subsamples find a penumbra's edge
+// at different points and it shows no step where the rounds begin.
 constexpr uint32_t kEndSets = 16;
-// In a penumbra a subsample reads this many of the sets, evenly spaced from its own; a point
-// is in one where its direct light is below the unshadowed one by more than kPenumbra of it.
-constexpr uint32_t kPenumbraSets = 8;
-constexpr float kPenumbra = 1e-3f;
+// Penumbra rounds at a subsample (GatherSettings::penumbra_rays), whatever the solver's: a
+// picture shows every penumbra at the pixel.
+constexpr uint32_t kPenumbraRounds = 8;
 // Rows traced, separated and shaded together: what is held at once is a band's hits.
 constexpr int kBandRows = 16;
 
@@ -83,11 +83,13 @@ Image render_gathered_image(const SolverState& s, const VisibilityBackend& vis,
   const DirectLight direct = make_direct_light(s, kEndSets);
   const PolygonLocator locator(tris, h.bounds);
   const GatherSettings base = gather_settings(s);
-  // A pixel's direct light averages sets of ray ends where it is in a penumbra (below), in place
-  // of the solver's penumbra rounds, which the vertices' direct light keeps: their bounced light
-  // is H less what the solver gathered directly, with the same rays.
+  // A subsample gathers its direct light as a vertex does, penumbra rounds and all: in a
+  // penumbra each stratum's rays end at points drawn by what they give that point, so a face
+  // close to a big source behind an occluder reads the light of the band it sees, not the
+  // band's share of the area. Every emitter gets the rounds: a small lamp's penumbra shows too.
   GatherSettings at_pixels = base;
-  at_pixels.penumbra_rays = 0;
+  at_pixels.penumbra_rays = kPenumbraRounds;
+  at_pixels.penumbra_every_source = true;
   // Camera segments reach past the far side of the scene from wherever the eye is.
   const float reach =
       2.0f * (glm::length(camera.eye - h.bounds.center()) + h.bounds.diagonal()) + 1e-30f;
@@ -212,23 +214,8 @@ Image render_gathered_image(const SolverState& s, const VisibilityBackend& vis,
                                       m, [&](uint32_t v) { return bounced[p][v]; }, bary) +
                                   o.ambient;
             const GatherSettings g = receiver_settings(at_pixels, s, p);
-            const uint32_t set = set_of(pixel, k);
-            Vec3 d = direct_gain(s, direct, p, hit.x, tris.normal[p], set, vis, g, sc.direct);
-            // In a penumbra (some light, less than unshadowed) the visibility is read through
-            // more sets of ray ends: the rays pay where they disagree, not everywhere.
-            if (g.shadows && max_component(d) > 0.0f) {
-              GatherSettings open = g;
-              open.shadows = false;
-              const Vec3 full =
-                  direct_gain(s, direct, p, hit.x, tris.normal[p], set, vis, open, sc.direct);
-              if (max_component(full - d) > kPenumbra * max_component(full)) {
-                for (uint32_t j = 1; j < kPenumbraSets; ++j) {
-                  d += direct_gain(s, direct, p, hit.x, tris.normal[p],
-                                   set + j * (kEndSets / kPenumbraSets), vis, g, sc.direct);
-                }
-                d /= float(kPenumbraSets);
-              }
-            }
+            const Vec3 d = direct_gain(s, direct, p, hit.x, tris.normal[p], set_of(pixel, k), vis,
+                                       g, sc.direct);
             sum += DVec3(e + rho * (d + indirect));
           }
           image.pixels[pixel] = Vec3(sum / double(spp));

@@ -39,10 +39,11 @@ struct GatheredImageStats {
 /// camera ray meets (the background where none; black on a face seen from behind, as
 /// render_image draws it). E and rho are read at the point (textures at the pixel's
 /// footprint); H_direct is gathered there from every emitter and light as a shot would
-/// (direct_light.h), its shadow rays ending at one of several sets of points per source, drawn
-/// per subsample, so a penumbra is smooth; H_bounced is the solution's H less its direct part
-/// at each vertex (gathered again there with the shots' own ends, never below 0),
-/// interpolated over the leaf element that holds the point. Deterministic: the same bytes for
+/// (direct_light.h), its first shadow rays ending at one of several sets of points per source,
+/// drawn per subsample, and in a penumbra the solver's penumbra rounds for every emitter
+/// (GatherSettings::penumbra_every_source), so a penumbra is smooth; H_bounced is the solution's H
+/// less its direct part at each vertex (gathered again there with the shots' own ends, never below
+/// 0), interpolated over the leaf element that holds the point. Deterministic: the same bytes for
 /// any thread count. `progress`, when given, is told the fraction done from this thread.
 Image render_gathered_image(const SolverState& s, const VisibilityBackend& vis,
                             const Camera& camera, const GatheredImageOptions& o,

@@ -17,8 +17,7 @@ namespace rad {
 /// scene, as sources that shoot once; and for each, the shadow-ray ends of `variants` sets:
 /// set 0 is the solver's own (each stratum's ray ends where its power is), set k > 0 ends each
 /// stratum's ray at one of its fine points drawn by power from k, so that points reading
-/// different sets see a source's visibility through different points, and a penumbra has no
-/// fixed steps once their answers are averaged.
+/// different sets find a penumbra's edge at different points and it has no fixed step.
 struct DirectLight {
   std::vector<ShotSource> sources;
   uint32_t variants = 1;

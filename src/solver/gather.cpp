@@ -197,9 +197,12 @@ uint64_t point_seed(const Vec3& x) {
 // sample carries at least st.penumbra_sample_energy. A sample's step in a penumbra is worth
 // what it carries: the lamps' first shots step by a sixteenth of their light, and the rounds go
 // there; a wall shot again and again carries a few percent over 64 samples, its steps are small
-// and its shadow rays many, and answers kept for its own ends are what keep it cheap.
+// and its shadow rays many, and answers kept for its own ends are what keep it cheap. In a
+// picture (st.penumbra_every_source) every source with fine points gets them.
 bool penumbra_source(const ShotSource& src, const GatherSettings& st) {
-  if (!src.major || src.fine_sample.empty() || src.sample_count == 0) return false;
+  if (src.fine_sample.empty() || src.sample_count == 0) return false;
+  if (st.penumbra_every_source) return true;
+  if (!src.major) return false;
   const double energy = double(src.area) * std::abs(double(mean_component(src.mean_unshot)));
   return energy >= st.penumbra_sample_energy * double(src.sample_count);
 }

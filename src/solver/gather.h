@@ -54,6 +54,9 @@ struct GatherSettings {
   /// Rounds only for shots whose mean sample carries at least this energy (area x mean-channel
   /// radiosity).
   double penumbra_sample_energy = 0.0;
+  /// Rounds for every source with fine points, major or not, whatever it carries: a picture's
+  /// pixels (gathered_image.h), where every penumbra shows at the pixel and no answer is kept.
+  bool penumbra_every_source = false;
 };
 
 /// Where x lies against every triangle of the source, conservatively: +1 in front of all, -1

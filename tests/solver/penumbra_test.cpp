@@ -211,5 +211,20 @@ TEST(Penumbra, AMinorShotGetsNoRounds) {
   EXPECT_EQ(off, on);
 }
 
+// A picture's pixels (GatherSettings::penumbra_every_source) give every source the rounds.
+TEST(Penumbra, InAPictureAMinorShotGetsThemToo) {
+  const Umbra u;
+  ShotSource src = u.lamp();
+  src.major = false;
+  GatherSettings g = gather_settings(u.s);
+  g.penumbra_rays = 8;
+  g.penumbra_every_source = true;
+  GatherScratch sc;
+  gather_from_source({1.0f, 0.0f, 0.05f}, {0, 1, 0}, u.h.triangles.centroid(0), src, *u.vis, g, sc);
+  uint64_t without = 0;
+  u.gain(src, 1.0f, 0.05f, 8, &without);
+  EXPECT_GE(sc.stats.rays.rays, without + 8 * src.sample_count);
+}
+
 }  // namespace
 }  // namespace rad
