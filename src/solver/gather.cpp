@@ -256,13 +256,13 @@ constexpr uint32_t kProbeRounds = 2;
 // its visible part weighed as its gain is: up close the kernel varies across a stratum many
 // times over (a face 15 cm from a window sees a 5 cm band along its near edge through a gap
 // under a board; the band weighs three times its share of the area), and ends drawn by area
-// would read the band at its area. The first pass's answers, one per stratum at fixed ends,
-// count too when `fixed_count`: far from the source (beyond its near field), where the kernel
-// varies little across a stratum, they are samples as good as the drawn ones and spread evenly;
-// near it they would weigh each stratum's light at its power centroid. Where the probes found
-// the source they never count: all hidden is why the point probed. The rounds' answers are not
-// kept: their ends move with the point. `fine_kernel`: the fine samples' kernels at x where
-// the caller has them already, else null.
+// would read the band at its area. The first pass's answers, one per stratum at the ends src
+// holds (the shot's; at a picture's pixel, its set's), count too when `fixed_count`: far from the
+// source (beyond its near field), where the kernel varies little across a stratum, they are samples
+// as good as the drawn ones and spread evenly; near it they would weigh each stratum's light at its
+// power centroid. Where the probes found the source they never count: all hidden is why the point
+// probed. The rounds' answers are not kept: their ends move with the point. `fine_kernel`: the fine
+// samples' kernels at x where the caller has them already, else null.
 void penumbra_rounds(const Vec3& x, const Vec3& n, const ShotSource& src, size_t na,
                      bool fixed_count, const float* fine_kernel, const VisibilityBackend& vis,
                      const GatherSettings& st, GatherScratch& scratch) {

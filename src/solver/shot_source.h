@@ -174,10 +174,11 @@ ShotSource make_emission_source(const SolverState& s, int32_t c);
 /// stratum's ray ends at one of the stratum's fine points, drawn with probability proportional
 /// to `weights` (one per lane of src.fine_sample: what the lane adds to a receiver's gain) or,
 /// where null, to its power (area x |mean channel|), or to its area where the stratum has no
-/// power (with `weights` all 0 in a stratum, it keeps the shot's end), by a fixed hash of
-/// (key, stratum), at a point of the fine point's cell
-/// (fine_cell_u, fine_cell_v: on the source) drawn uniformly by another; moved off the surface
-/// by `offset` as the shot's own ends are. A stratum without fine points keeps the shot's end.
+/// power (with `weights` all 0 in a stratum, it keeps the end src holds: the shot's, or at a
+/// picture's pixel its set's, direct_light.h), by a fixed hash of (key, stratum), at a point of
+/// the fine point's cell (fine_cell_u, fine_cell_v: on the source) drawn uniformly by another;
+/// moved off the surface by `offset` as the shot's own ends are. A stratum without fine points
+/// keeps the end src holds.
 /// The same key gives the same ends on every run, thread and rank; different keys see a
 /// stratum's visibility through different points. No allocation once `out` holds 3 x the ends.
 void draw_ray_ends(const ShotSource& src, uint64_t key, float offset, const float* weights,

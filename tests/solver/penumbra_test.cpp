@@ -211,13 +211,15 @@ TEST(Penumbra, AMinorShotGetsNoRounds) {
   EXPECT_EQ(off, on);
 }
 
-// A picture's pixels (GatherSettings::penumbra_every_source) give every source the rounds.
+// A picture's pixels (GatherSettings::penumbra_every_source) give every source the rounds,
+// major or not, whatever its samples carry.
 TEST(Penumbra, InAPictureAMinorShotGetsThemToo) {
   const Umbra u;
   ShotSource src = u.lamp();
   src.major = false;
   GatherSettings g = gather_settings(u.s);
   g.penumbra_rays = 8;
+  g.penumbra_sample_energy = 1e30;
   g.penumbra_every_source = true;
   GatherScratch sc;
   gather_from_source({1.0f, 0.0f, 0.05f}, {0, 1, 0}, u.h.triangles.centroid(0), src, *u.vis, g, sc);
