@@ -106,25 +106,16 @@ TEST(GatheredImage, APenumbraGatheredAsAPixelDoesIsTheExactOneWithoutSteps) {
   EXPECT_LT(step_pixel, 0.5 * step_fixed);
 }
 
-// A lamp 1.2 m square, 15 cm over a grey floor, with a black board 5 cm under it over x >= 0:
-// from floor point (x < 0, 0, z) the board hides all of the lamp but a band along its near edge,
-// x from 0 to -x / 2, which weighs far more than its share of the nearest strata's area. Seen
-// from above, the floor beside the lamp shows that band's light, as the solver's vertices do,
-// not the band's share of the area (about half of it, with ends drawn by power).
+// band_scene: a lamp 1.2 m square, 15 cm over a grey floor, with a black board 5 cm under it
+// over x >= 0: from floor point (x < 0, 0, z) the board hides all of the lamp but a band along
+// its near edge, x from 0 to -x / 2, which weighs far more than its share of the nearest strata's
+// area. Seen from above, the floor beside the lamp shows that band's light, as the solver's
+// vertices do, not the band's share of the area (about half of it, with ends drawn by power).
 TEST(GatheredImage, BesideALampCloseByThePixelsShowTheLightOfTheBandTheySee) {
-  constexpr float lamp_y = 0.15f, board_y = 0.1f, size = 1.2f, half = 0.6f, rho = 0.5f;
-  SceneDescription d;
-  add_quad(d, "floor", {-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}, Vec3(rho), Vec3(0.0f));
-  add_quad(d, "board top", {0, board_y, -2}, {0, board_y, 2}, {2, board_y, 2}, {2, board_y, -2},
-           Vec3(0.0f), Vec3(0.0f));
-  add_quad(d, "board bottom", {0, board_y, -2}, {2, board_y, -2}, {2, board_y, 2}, {0, board_y, 2},
-           Vec3(0.0f), Vec3(0.0f));
-  add_quad(d, "lamp", {0, lamp_y, -half}, {size, lamp_y, -half}, {size, lamp_y, half},
-           {0, lamp_y, half}, Vec3(0.0f), Vec3(kLampEmission));
-  const Hierarchy h = build_hierarchy(std::move(d));
+  const Hierarchy h = build_hierarchy(testing::band_scene());
   const auto vis = make_visibility_backend(BackendKind::Embree, h);
-  // The floor's light meets only black faces: nothing comes back, and the picture is rho times
-  // the direct light.
+  // The floor's light meets only black faces: nothing comes back, and the picture is the floor's
+  // reflectance times the direct light.
   const SolverState s = solve_shots(h, *vis, SolverOptions{}, 2);
   GatheredImageOptions o;
   o.width = o.height = 16;
@@ -140,8 +131,7 @@ TEST(GatheredImage, BesideALampCloseByThePixelsShowTheLightOfTheBandTheySee) {
                                       f.up * ((1.0f - 2.0f * v) * f.tan_half_y));
       const Vec3 at = camera.eye + dir * (camera.eye.y / -dir.y);
       ASSERT_LT(at.x, 0.0f);
-      const double a = -double(at.x), z = double(at.z);
-      exact += rho * kLampEmission * rectangle_factor(a, 1.5 * a, -half - z, half - z, lamp_y);
+      exact += 0.5 * testing::exact_band_direct(at.x, at.z);  // the floor's reflectance
       shown += double(picture.at(x, y).x);
     }
   }

@@ -16,6 +16,7 @@
 namespace rad {
 namespace {
 
+using testing::band_scene;
 using testing::exact_direct;
 using testing::kBlockerHalf;
 using testing::kBlockerHeight;
@@ -167,31 +168,20 @@ TEST(Penumbra, ThroughAGapNarrowerThanAStratumTheProbesFindTheLamp) {
   EXPECT_NEAR(with, expected, 0.1 * exact);
 }
 
-// A lamp 1.2 m square, 15 cm over the floor, with a black board 5 cm under it over x >= 0. From
-// floor points 10 cm short of the lamp's edge (x = -0.1) the board hides all of the lamp but a
-// band 5 cm wide along its near edge (x from 0 to 0.05): a fifth of the nearest strata's width
-// (5 x 5 strata, 24 cm) but, so close, near half of their light. The rounds' ends, drawn by what
-// each point of a stratum gives, see the band at its weight, not at its area.
+// band_scene: a lamp 1.2 m square, 15 cm over the floor, with a black board 5 cm under it over
+// x >= 0. From floor points 10 cm short of the lamp's edge (x = -0.1) the board hides all of the
+// lamp but a band 5 cm wide along its near edge (x from 0 to 0.05): a fifth of the nearest strata's
+// width (5 x 5 strata, 24 cm) but, so close, near half of their light. The rounds' ends, drawn by
+// what each point of a stratum gives, see the band at its weight, not at its area.
 TEST(Penumbra, ABandOfALampCloseByCountsAsMuchAsItGives) {
-  constexpr float lamp_y = 0.15f, board_y = 0.1f, size = 1.2f, half = 0.6f;
-  SceneDescription d;
-  add_quad(d, "floor", {-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}, Vec3(0.5f), Vec3(0.0f));
-  add_quad(d, "board top", {0, board_y, -2}, {0, board_y, 2}, {2, board_y, 2}, {2, board_y, -2},
-           Vec3(0.0f), Vec3(0.0f));
-  add_quad(d, "board bottom", {0, board_y, -2}, {2, board_y, -2}, {2, board_y, 2}, {0, board_y, 2},
-           Vec3(0.0f), Vec3(0.0f));
-  add_quad(d, "lamp", {0, lamp_y, -half}, {size, lamp_y, -half}, {size, lamp_y, half},
-           {0, lamp_y, half}, Vec3(0.0f), Vec3(kLampEmission));
-  const Umbra u(std::move(d), 6);
+  const Umbra u(band_scene(), 6);
   const ShotSource src = u.lamp();
   ASSERT_EQ(src.sample_count, 25u);
-  const float band = 0.1f * lamp_y / board_y - 0.1f;  // 0.05: the rays past the board's edge
   double exact = 0.0, with = 0.0;
   const int points = 21;
   for (int i = 0; i < points; ++i) {
     const float z = -0.1f + 0.2f * float(i) / float(points - 1);
-    exact +=
-        kLampEmission * rectangle_factor(0.1, 0.1 + band, -half - z, half - z, lamp_y) / points;
+    exact += testing::exact_band_direct(-0.1, z) / points;
     with += u.gain(src, -0.1f, z, 8) / points;
   }
   RecordProperty("exact", std::to_string(exact));

@@ -54,4 +54,28 @@ inline double exact_direct(double x, double z) {
   return kLampEmission * (lamp - hidden);
 }
 
+/// Up close: a lamp kBandLampSize square, kBandLampHeight over a grey floor (reflectance 0.5),
+/// its near edge at x = 0, with a black board kBandBoardHeight up over x >= 0 (both faces). From
+/// floor point (x < 0, 0, z) the board hides all of the lamp but a band along its near edge, x
+/// from 0 to -x (kBandLampHeight / kBandBoardHeight - 1), which weighs far more than its share
+/// of the nearest strata's area. Triangles: floor 0-1, board 2-5, lamp 6-7.
+inline constexpr float kBandLampHeight = 0.15f, kBandBoardHeight = 0.1f, kBandLampSize = 1.2f;
+inline SceneDescription band_scene() {
+  SceneDescription d;
+  const float l = kBandLampHeight, b = kBandBoardHeight, s = kBandLampSize, h = 0.5f * s;
+  add_quad(d, "floor", {-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}, Vec3(0.5f), Vec3(0.0f));
+  add_quad(d, "board top", {0, b, -2}, {0, b, 2}, {2, b, 2}, {2, b, -2}, Vec3(0.0f), Vec3(0.0f));
+  add_quad(d, "board bottom", {0, b, -2}, {2, b, -2}, {2, b, 2}, {0, b, 2}, Vec3(0.0f), Vec3(0.0f));
+  add_quad(d, "lamp", {0, l, -h}, {s, l, -h}, {s, l, h}, {0, l, h}, Vec3(0.0f),
+           Vec3(kLampEmission));
+  return d;
+}
+
+/// The exact direct gain H at floor point (x, 0, z), x < 0, of band_scene: the band's.
+inline double exact_band_direct(double x, double z) {
+  const double a = -x, h = 0.5 * kBandLampSize;
+  return kLampEmission * rectangle_factor(a, a * kBandLampHeight / kBandBoardHeight, -h - z, h - z,
+                                          kBandLampHeight);
+}
+
 }  // namespace rad::testing
