@@ -25,9 +25,6 @@ namespace {
 // drawn from its pixel and its place in it, so neighbouring subsamples find a penumbra's edge
 // at different points and it shows no step where the rounds begin.
 constexpr uint32_t kEndSets = 16;
-// Penumbra rounds at a subsample (GatherSettings::penumbra_rays), whatever the solver's: a
-// picture shows every penumbra at the pixel.
-constexpr uint32_t kPenumbraRounds = 8;
 // Rows traced, separated and shaded together: what is held at once is a band's hits.
 constexpr int kBandRows = 16;
 
@@ -66,6 +63,13 @@ Vec3 barycentric(const std::array<Vec3, 3>& c, const Vec3& x) {
 
 }  // namespace
 
+GatherSettings pixel_gather_settings(const SolverState& s) {
+  GatherSettings g = gather_settings(s);
+  g.penumbra_rays = 8;
+  g.penumbra_every_source = true;
+  return g;
+}
+
 Image render_gathered_image(const SolverState& s, const VisibilityBackend& vis,
                             const Camera& camera, const GatheredImageOptions& o,
                             GatheredImageStats* stats,
@@ -83,13 +87,7 @@ Image render_gathered_image(const SolverState& s, const VisibilityBackend& vis,
   const DirectLight direct = make_direct_light(s, kEndSets);
   const PolygonLocator locator(tris, h.bounds);
   const GatherSettings base = gather_settings(s);
-  // A subsample gathers its direct light as a vertex does, penumbra rounds and all: in a
-  // penumbra each stratum's rays end at points drawn by what they give that point, so a face
-  // close to a big source behind an occluder reads the light of the band it sees, not the
-  // band's share of the area. Every emitter gets the rounds: a small lamp's penumbra shows too.
-  GatherSettings at_pixels = base;
-  at_pixels.penumbra_rays = kPenumbraRounds;
-  at_pixels.penumbra_every_source = true;
+  const GatherSettings at_pixels = pixel_gather_settings(s);
   // Camera segments reach past the far side of the scene from wherever the eye is.
   const float reach =
       2.0f * (glm::length(camera.eye - h.bounds.center()) + h.bounds.diagonal()) + 1e-30f;

@@ -9,6 +9,7 @@
 
 #include "export/camera.h"
 #include "export/image.h"
+#include "solver/gather.h"
 #include "solver/solver_state.h"
 #include "visibility/backend.h"
 
@@ -33,6 +34,13 @@ struct GatheredImageStats {
   size_t polygons_seen = 0;  // polygons whose vertices' bounced light was separated
   double seconds = 0.0;
 };
+
+/// How a subsample gathers its direct light: as a vertex does (gather_settings), with 8 penumbra
+/// rounds whatever the solver's and for every emitter (GatherSettings::penumbra_every_source):
+/// in a penumbra each stratum's rays end at points drawn by what they give that point, so a
+/// face close to a big source behind an occluder reads the light of the band it sees, not the
+/// band's share of the area, and a small lamp's penumbra shows as a window's does.
+GatherSettings pixel_gather_settings(const SolverState& s);
 
 /// Renders the solved state `s` seen from `camera`: each pixel the mean over `samples`^2
 /// jittered subsamples of the radiosity B = E + rho (H_direct + H_bounced) at the surface a

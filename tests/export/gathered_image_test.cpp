@@ -36,15 +36,6 @@ using testing::kLampHeight;
 using testing::rectangle_factor;
 using testing::umbra_scene;
 
-// How a subsample gathers its direct light (render_gathered_image): its first rays to one of
-// the end sets, then the penumbra rounds for every emitter.
-GatherSettings pixel_settings(const SolverState& s) {
-  GatherSettings g = gather_settings(s);
-  g.penumbra_rays = 8;
-  g.penumbra_every_source = true;
-  return g;
-}
-
 TEST(GatheredImage, APenumbraGatheredAsAPixelDoesIsTheExactOneWithoutSteps) {
   const Hierarchy h = build_hierarchy(umbra_scene());
   const auto vis = make_visibility_backend(BackendKind::Embree, h);
@@ -55,7 +46,7 @@ TEST(GatheredImage, APenumbraGatheredAsAPixelDoesIsTheExactOneWithoutSteps) {
   const PolygonLocator locator(h.triangles, h.bounds);
   std::vector<std::pair<uint32_t, int>> stack;
   DirectLightScratch scratch;
-  const GatherSettings pixel = pixel_settings(s);
+  const GatherSettings pixel = pixel_gather_settings(s);
   GatherSettings fixed_only = gather_settings(s);
   fixed_only.penumbra_rays = 0;
   const double open =
