@@ -25,6 +25,9 @@ namespace {
 // drawn from its pixel and its place in it, so neighbouring subsamples find a penumbra's edge
 // at different points and it shows no step where the rounds begin.
 constexpr uint32_t kEndSets = 16;
+// Penumbra rounds at a subsample (pixel_gather_settings), whatever the solver's --penumbra-rays:
+// a picture shows every penumbra at the pixel.
+constexpr uint32_t kPixelPenumbraRounds = 8;
 // Rows traced, separated and shaded together: what is held at once is a band's hits.
 constexpr int kBandRows = 16;
 
@@ -65,7 +68,7 @@ Vec3 barycentric(const std::array<Vec3, 3>& c, const Vec3& x) {
 
 GatherSettings pixel_gather_settings(const SolverState& s) {
   GatherSettings g = gather_settings(s);
-  g.penumbra_rays = 8;
+  g.penumbra_rays = kPixelPenumbraRounds;
   g.penumbra_every_source = true;
   return g;
 }
