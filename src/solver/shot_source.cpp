@@ -237,7 +237,7 @@ bool reaches(const ShotSource& src, const Aabb& b, float top, float facing) {
   if (!(src.roulette_draw > 0.0f)) return true;
   const float slack = kRouletteSlack * b.diagonal();
   const float q = src.roulette_q(distance2(src.box, b), top + slack, facing + slack);
-  return q >= 1.0f || q > src.roulette_draw;
+  return q >= 1.0f || q > src.least_draw(q);
 }
 
 // The highest point of b above a planar source's plane (+inf for a curved source).
@@ -262,7 +262,7 @@ bool ShotSource::roulette_distance_reaches(const Aabb& b) const {
   if (!(roulette_draw > 0.0f)) return true;
   const float d2 = distance2(box, b);
   const float q = d2 * roulette_peak > roulette_reach2 ? roulette_reach2 / d2 : roulette_peak;
-  return q >= 1.0f || q > roulette_draw;
+  return q >= 1.0f || q > least_draw(q);
 }
 
 void aim_roulette(ShotSource& src, float level, int64_t shot) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -100,10 +101,46 @@ struct ShotSource {
   std::vector<Vec3> fine_cell_u, fine_cell_v;
   // Russian roulette (Arvo and Kirk, "Particle transport and image synthesis", SIGGRAPH 1990)
   // over the receivers: where a point's gain is bounded by `level` times q(x) < 1 (roulette_q),
-  // it gathers only when q(x) > draw and divides its gain by q(x). One draw per shot, so a
-  // receiver's vertices all gather or none do, and a box beyond reach gathers nothing (the shot
-  // skips it). draw = 0: every point gathers, as is.
+  // it gathers only when q(x) > its draw and divides its gain by q(x). The shot draws once
+  // (roulette_draw, uniform in (0, 1)); a point of q(x) >= kStratifiedQ takes the draw of its
+  // stratum, roulette_draw + k / kRouletteStrata (mod 1) for k a hash of its position
+  // (point_draw), and a fainter point the shot's draw itself. Each point's draw is uniform, so
+  // each stays unbiased; but where one draw would have a faint shot's far wall gather all its
+  // points with probability q or none, the strata have it gather a quarter of them (one stratum,
+  // weighted 1 / q) with probability 4q: the wall's share of the shot keeps its mean with about
+  // a quarter of the variance, which is what a room's total (its shell, the light it sends back)
+  // adds up. Fainter points keep the shot's draw, so the far field (a building's other rooms)
+  // is skipped box by box as often as with one draw (roulette_reaches_box). draw = 0: every
+  // point gathers, as is.
   float roulette_draw = 0.0f, roulette_peak = 1.0f, roulette_reach2 = 0.0f;
+  static constexpr uint32_t kRouletteStrata = 4;
+  static constexpr float kStratifiedQ = 0.01f;
+
+  /// The draw a point at x of bound q (q < 1) gathers against (see roulette_draw). Exact in a
+  /// float: the strata shift the draw's 23 bits (open_unit_draw) by whole quarters.
+  float point_draw(const Vec3& x, float q) const {
+    if (q < kStratifiedQ) return roulette_draw;
+    return stratum_draw(uint32_t(position_key(x) % kRouletteStrata));
+  }
+  /// The draw of stratum k.
+  float stratum_draw(uint32_t k) const {
+    return (float((draw_bits() + k * kStratumBits) % kDrawBits) + 0.5f) / float(kDrawBits);
+  }
+  /// The least draw of any point of bound q: the shot's below kStratifiedQ, else the lowest
+  /// stratum's.
+  float least_draw(float q) const {
+    if (q < kStratifiedQ) return roulette_draw;
+    return (float(draw_bits() % kStratumBits) + 0.5f) / float(kDrawBits);
+  }
+  static constexpr uint32_t kDrawBits = 1u << 23, kStratumBits = kDrawBits / kRouletteStrata;
+  /// m of the shot's draw (m + 1/2) / 2^23 (open_unit_draw).
+  uint32_t draw_bits() const { return uint32_t(roulette_draw * float(kDrawBits)); }
+  /// A point's stratum key: its coordinates' bits (-0 as 0), so a vertex shared by polygons
+  /// draws the same whichever gathers for it, on every run, thread and rank.
+  static uint64_t position_key(const Vec3& x) {
+    auto bits = [](float v) { return uint64_t(std::bit_cast<uint32_t>(v + 0.0f)); };
+    return splitmix64(bits(x.x) ^ splitmix64(bits(x.y) ^ splitmix64(bits(x.z))));
+  }
 
   /// q of a point at squared distance d2 from the source's box, at most h above a planar
   /// source's plane, whose tangent plane has the box's farthest corner m above it (h, m: +inf
@@ -128,7 +165,7 @@ struct ShotSource {
   float roulette_weight(const Vec3& x, const Vec3& n, float slack) const {
     if (!(roulette_draw > 0.0f)) return 1.0f;
     const float q = roulette_q(distance2(box, x), height(x) + slack, facing(x, n) + slack);
-    return q >= 1.0f ? 1.0f : (q > roulette_draw ? 1.0f / q : 0.0f);
+    return q >= 1.0f ? 1.0f : (q > point_draw(x, q) ? 1.0f / q : 0.0f);
   }
   /// False when no point of `b` gathers (roulette_weight is 0 throughout, whatever its normal).
   bool roulette_reaches_box(const Aabb& b) const;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <vector>
 
 #include "scene_builder.h"
 #include "solver/gather.h"
@@ -81,6 +82,48 @@ TEST(Roulette, AFarPointsWeightIsOneOnAverageAndNearPointsAlwaysGather) {
   EXPECT_NEAR(sum / draws, 1.0, 0.04);
 }
 
+TEST(Roulette, OfManyPointsOfOneQAShotGathersOneStratumOrNone) {
+  // 2,000 points straight below the light (its box), facing it: one q, between kStratifiedQ and
+  // 1 / kRouletteStrata. One draw per shot would have them all gather, or none; the strata have
+  // a shot gather about a quarter of them, or none, and each point still gathers with
+  // probability q over the shots.
+  FarFloor f;
+  ShotSource src = f.light();
+  const float level = 1.0f / (std::numbers::pi_v<float> * 4.0f);  // reach 2, as above
+  const float depth = 1.0f - 2.0f * std::sqrt(10.0f);             // q = 0.1
+  std::vector<Vec3> points;
+  for (int i = 0; i < 2000; ++i) points.push_back(Vec3(-0.45f + 4.5e-4f * float(i), 0.5f, depth));
+  const Vec3 up(0.0f, 0.0f, 1.0f);
+  ASSERT_GE(0.1f, ShotSource::kStratifiedQ);
+  ASSERT_LT(0.1f, 1.0f / float(ShotSource::kRouletteStrata));
+  std::vector<int> gathered(points.size(), 0);
+  int shots_gathering = 0;
+  const int shots = 20000;
+  for (int64_t shot = 1; shot <= shots; ++shot) {
+    aim_roulette(src, level, shot);
+    size_t n = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+      const float w = src.roulette_weight(points[i], up, 0.0f);
+      if (w > 0.0f) {
+        ASSERT_NEAR(w, 10.0f, 0.05f);
+        ++gathered[i], ++n;
+      }
+    }
+    if (n == 0) continue;
+    ++shots_gathering;
+    // One stratum of four: binomial about 500 of 2,000, well within 400..600.
+    ASSERT_GT(n, 400u) << "shot " << shot;
+    ASSERT_LT(n, 600u) << "shot " << shot;
+  }
+  // A shot gathers some stratum with probability 4q = 0.4.
+  EXPECT_NEAR(double(shots_gathering) / shots, 0.4, 0.02);
+  double mean = 0.0;
+  for (int g : gathered) mean += double(g) / shots / double(points.size());
+  EXPECT_NEAR(mean, 0.1, 0.005);
+  // Each point alone gathers with probability q too.
+  for (int g : gathered) ASSERT_NEAR(double(g) / shots, 0.1, 0.02);
+}
+
 TEST(Roulette, APointsGainIsAtMostTheLevelTimesItsQ) {
   // q bounds the gain by the distance and both cosines (roulette_q): were a bound wrong, a
   // point would gather more than the level at once, or be skipped where it gains.
@@ -132,9 +175,13 @@ TEST(Roulette, ABoxBeyondReachHoldsNoPointThatGathers) {
       if (!reaches) {
         EXPECT_EQ(src.roulette_weight(x, n, slack), 0.0f);
       }
+      // A point that gathers lies in a triangle the shot reaches (the test bounds every
+      // stratum's draw, so it may reach a point whose own stratum does not gather).
       Aabb point;
       point.extend(x);
-      EXPECT_EQ(src.roulette_reaches_triangle(point, x, n), src.roulette_weight(x, n, 0.0f) > 0.0f);
+      if (src.roulette_weight(x, n, 0.0f) > 0.0f) {
+        EXPECT_TRUE(src.roulette_reaches_triangle(point, x, n));
+      }
     }
   }
   EXPECT_GT(beyond, 100);
@@ -182,7 +229,9 @@ TEST(Roulette, TheFloorGainsTheSameOnAverageAndAShotSkipsWhatItDoesNotReach) {
   // nothing of it.
   ShotSource src = plain;
   int64_t shot = 1;
-  for (aim_roulette(src, level, shot); src.roulette_draw < 0.5f; aim_roulette(src, level, ++shot)) {
+  // A shot whose strata all draw high: the least of them (least_draw) at least 0.2.
+  for (aim_roulette(src, level, shot); src.least_draw(1.0f) < 0.2f;
+       aim_roulette(src, level, ++shot)) {
   }
   shoot_to_receivers({f.s.options, f.s.scene, f.s.energy, f.s.shots, f.s.ownership, f.s.solution,
                       f.s.receivers, f.s.kept, f.s.stats},
