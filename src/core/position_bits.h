@@ -1,5 +1,5 @@
 // A position as the bits of its coordinates, -0 as +0: the key of exact welds (two points are
-// one when they are the same floats).
+// one when they are the same floats), and the seed of the draws made at a point.
 #pragma once
 
 #include <array>
@@ -23,6 +23,15 @@ inline size_t hash_position_bits(const PositionBits& k, uint32_t seed = 0) {
   h = (h ^ seed) * 1099511628211ull;
   for (uint32_t w : k) h = (h ^ w) * 1099511628211ull;
   return size_t(h);
+}
+
+/// 64 well-mixed bits of a position (its bits, -0 as +0, through mix64): the seed of the draws
+/// made at a point (its penumbra rounds' ray ends, its roulette lot), so neighbouring points
+/// draw differently and a point, and every polygon's copy of a shared vertex, always the same,
+/// on any thread or rank.
+inline uint64_t position_seed(const Vec3& p) {
+  const PositionBits b = position_bits(p);
+  return mix64(mix64(mix64(b[0]) ^ b[1]) ^ b[2]);
 }
 
 struct PositionBitsHash {

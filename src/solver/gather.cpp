@@ -4,7 +4,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <bit>
 #include <cassert>
 #include <cstring>
 #include <numbers>
@@ -12,6 +11,7 @@
 #include <span>
 
 #include "core/denormals.h"
+#include "core/position_bits.h"
 #include "solver/form_factor.h"
 #include "solver/light_source.h"
 
@@ -180,19 +180,6 @@ void trace_fan(const Vec3& x, const Vec3& n, const ShotSource& src, const uint32
                scratch, blocked);
 }
 
-// A point's seed for its penumbra rounds: its coordinates' bits, mixed (splitmix64's
-// finaliser), so neighbouring points see a stratum through different points and the same point
-// always through the same ones, on any thread or rank.
-uint64_t mix_bits(uint64_t z) {
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
-uint64_t point_seed(const Vec3& x) {
-  return mix_bits(mix_bits(mix_bits(std::bit_cast<uint32_t>(x.x)) ^ std::bit_cast<uint32_t>(x.y)) ^
-                  std::bit_cast<uint32_t>(x.z));
-}
-
 // Whether `src` gets penumbra rounds: a major shot with fine points to draw from, whose mean
 // sample carries at least st.penumbra_sample_energy. A sample's step in a penumbra is worth
 // what it carries: the lamps' first shots step by a sixteenth of their light, and the rounds go
@@ -280,7 +267,8 @@ void penumbra_rounds(const Vec3& x, const Vec3& n, const ShotSource& src, size_t
   // The last probing round: where every ray so far agrees the source is hidden, the rounds end
   // there unless one of them finds some of it.
   const uint32_t probes = agree ? std::min(kProbeRounds, st.penumbra_rays) : 0;
-  const uint64_t seed = point_seed(x);
+  // Neighbouring points see a stratum through different points, a point always the same.
+  const uint64_t seed = position_seed(x);
   const size_t m = src.end_x.size();
   const SampleLanes& fine = src.fine_sample;
   scratch.draw_weight.resize(fine.size());

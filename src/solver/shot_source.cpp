@@ -340,6 +340,6 @@ void draw_ray_ends(const ShotSource& src, uint64_t key, float offset, const floa
   }
 }
 
-float open_unit_draw(uint64_t bits) { return (float(bits >> 41) + 0.5f) * 0x1p-23f; }
+float open_unit_draw(uint64_t bits) { return ShotSource::unit_draw(uint32_t(bits >> 41)); }
 
 }  // namespace rad

@@ -2,7 +2,6 @@
 #pragma once
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -10,6 +9,7 @@
 
 #include "core/aabb.h"
 #include "core/math.h"
+#include "core/position_bits.h"
 #include "scene/light.h"
 
 namespace rad {
@@ -102,45 +102,40 @@ struct ShotSource {
   // Russian roulette (Arvo and Kirk, "Particle transport and image synthesis", SIGGRAPH 1990)
   // over the receivers: where a point's gain is bounded by `level` times q(x) < 1 (roulette_q),
   // it gathers only when q(x) > its draw and divides its gain by q(x). The shot draws once
-  // (roulette_draw, uniform in (0, 1)); a point of q(x) >= kStratifiedQ takes the draw of its
-  // stratum, roulette_draw + k / kRouletteStrata (mod 1) for k a hash of its position
-  // (point_draw), and a fainter point the shot's draw itself. Each point's draw is uniform, so
-  // each stays unbiased; but where one draw would have a faint shot's far wall gather all its
-  // points with probability q or none, the strata have it gather a quarter of them (one stratum,
-  // weighted 1 / q) with probability 4q: the wall's share of the shot keeps its mean with about
-  // a quarter of the variance, which is what a room's total (its shell, the light it sends back)
-  // adds up. Fainter points keep the shot's draw, so the far field (a building's other rooms)
-  // is skipped box by box as often as with one draw (roulette_reaches_box). draw = 0: every
-  // point gathers, as is.
+  // (roulette_draw, uniform in (0, 1)). A point of q(x) >= kLotsFromQ is in one of kRouletteLots
+  // lots by its position, and lot k draws roulette_draw + k / kRouletteLots (mod 1); a fainter
+  // point draws the shot's draw itself (point_draw). Each point's draw is uniform, so each stays
+  // unbiased; but where one draw would have a faint shot's far wall gather all its points with
+  // probability q or none, the lots have it gather a quarter of them (one lot, weighted 1 / q)
+  // with probability 4q (for q <= 1/4): the wall's share of the shot keeps its mean with about a
+  // quarter of the variance, and so does a room's total (its shell, the light it sends back).
+  // Fainter points keep the shot's draw, so the far field (a building's other rooms) is skipped
+  // box by box as often as with one draw (roulette_reaches_box). draw = 0: every point gathers,
+  // as is.
   float roulette_draw = 0.0f, roulette_peak = 1.0f, roulette_reach2 = 0.0f;
-  static constexpr uint32_t kRouletteStrata = 4;
-  static constexpr float kStratifiedQ = 0.01f;
+  static constexpr uint32_t kRouletteLots = 4;
+  static constexpr float kLotsFromQ = 0.01f;
 
-  /// The draw a point at x of bound q (q < 1) gathers against (see roulette_draw). Exact in a
-  /// float: the strata shift the draw's 23 bits (open_unit_draw) by whole quarters.
+  /// The draw a point at x of bound q (q < 1) gathers against (see roulette_draw).
   float point_draw(const Vec3& x, float q) const {
-    if (q < kStratifiedQ) return roulette_draw;
-    return stratum_draw(uint32_t(position_key(x) % kRouletteStrata));
+    if (q < kLotsFromQ) return roulette_draw;
+    return lot_draw(uint32_t(position_seed(x) % kRouletteLots));
   }
-  /// The draw of stratum k.
-  float stratum_draw(uint32_t k) const {
-    return (float((draw_bits() + k * kStratumBits) % kDrawBits) + 0.5f) / float(kDrawBits);
+  /// The draw of lot k: the shot's 23 bits (open_unit_draw) shifted by k whole lots, so exact.
+  float lot_draw(uint32_t k) const {
+    constexpr uint32_t kDraws = 1u << 23, kLotDraws = kDraws / kRouletteLots;
+    const uint32_t m = uint32_t(roulette_draw * float(kDraws));  // roulette_draw = (m + 1/2) / 2^23
+    return unit_draw((m + k * kLotDraws) % kDraws);
   }
-  /// The least draw of any point of bound q: the shot's below kStratifiedQ, else the lowest
-  /// stratum's.
+  /// The least draw of any point of bound q: the shot's below kLotsFromQ, else the lowest lot's
+  /// (the lot whose shift wraps the draw past 1).
   float least_draw(float q) const {
-    if (q < kStratifiedQ) return roulette_draw;
-    return (float(draw_bits() % kStratumBits) + 0.5f) / float(kDrawBits);
+    if (q < kLotsFromQ) return roulette_draw;
+    const uint32_t wrapped = uint32_t(roulette_draw * float(kRouletteLots));
+    return lot_draw((kRouletteLots - wrapped) % kRouletteLots);
   }
-  static constexpr uint32_t kDrawBits = 1u << 23, kStratumBits = kDrawBits / kRouletteStrata;
-  /// m of the shot's draw (m + 1/2) / 2^23 (open_unit_draw).
-  uint32_t draw_bits() const { return uint32_t(roulette_draw * float(kDrawBits)); }
-  /// A point's stratum key: its coordinates' bits (-0 as 0), so a vertex shared by polygons
-  /// draws the same whichever gathers for it, on every run, thread and rank.
-  static uint64_t position_key(const Vec3& x) {
-    auto bits = [](float v) { return uint64_t(std::bit_cast<uint32_t>(v + 0.0f)); };
-    return splitmix64(bits(x.x) ^ splitmix64(bits(x.y) ^ splitmix64(bits(x.z))));
-  }
+  /// (m + 1/2) / 2^23 for the 23 bits m: a draw in (0, 1), exact in a float.
+  static float unit_draw(uint32_t m) { return (float(m) + 0.5f) * 0x1p-23f; }
 
   /// q of a point at squared distance d2 from the source's box, at most h above a planar
   /// source's plane, whose tangent plane has the box's farthest corner m above it (h, m: +inf

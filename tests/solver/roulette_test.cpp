@@ -2,11 +2,13 @@
 // shots' draws, and a shot skips what lies beyond its reach.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
 #include <vector>
 
+#include "core/position_bits.h"
 #include "scene_builder.h"
 #include "solver/gather.h"
 #include "solver/shoot.h"
@@ -82,11 +84,40 @@ TEST(Roulette, AFarPointsWeightIsOneOnAverageAndNearPointsAlwaysGather) {
   EXPECT_NEAR(sum / draws, 1.0, 0.04);
 }
 
-TEST(Roulette, OfManyPointsOfOneQAShotGathersOneStratumOrNone) {
-  // 2,000 points straight below the light (its box), facing it: one q, between kStratifiedQ and
-  // 1 / kRouletteStrata. One draw per shot would have them all gather, or none; the strata have
-  // a shot gather about a quarter of them, or none, and each point still gathers with
-  // probability q over the shots.
+TEST(Roulette, LotZeroDrawsTheShotsDrawAndTheLeastDrawIsTheLeastLots) {
+  FarFloor f;
+  ShotSource src = f.light();
+  for (int64_t shot = 1; shot <= 10000; ++shot) {
+    aim_roulette(src, 1e-2f, shot);
+    ASSERT_EQ(src.lot_draw(0), src.roulette_draw);
+    float least = 1.0f;
+    for (uint32_t k = 0; k < ShotSource::kRouletteLots; ++k) {
+      const float d = src.lot_draw(k);
+      ASSERT_GT(d, 0.0f);
+      ASSERT_LT(d, 1.0f);
+      // k / kRouletteLots apart, modulo 1, to the bit (in double, where the sum is exact).
+      const double shifted = double(src.roulette_draw) + double(k) / ShotSource::kRouletteLots;
+      ASSERT_EQ(double(d), std::fmod(shifted, 1.0)) << "shot " << shot << " lot " << k;
+      least = std::min(least, d);
+    }
+    ASSERT_EQ(src.least_draw(1.0f), least);
+    ASSERT_EQ(src.least_draw(ShotSource::kLotsFromQ), least);
+    ASSERT_EQ(src.least_draw(0.5f * ShotSource::kLotsFromQ), src.roulette_draw);
+  }
+  // -0 and +0 are one position: a vertex draws the same whichever polygon's copy asks.
+  aim_roulette(src, 1e-2f, 3);
+  for (int i = 0; i < 64; ++i) {
+    const Vec3 a(0.0f, float(i), 0.0f), b(-0.0f, float(i), -0.0f);
+    ASSERT_EQ(position_seed(a), position_seed(b));
+    ASSERT_EQ(src.point_draw(a, 0.5f), src.point_draw(b, 0.5f));
+  }
+}
+
+TEST(Roulette, OfManyPointsOfOneQAShotGathersOneLotOrNone) {
+  // 2,000 points straight below the light (its box), facing it: one q, between kLotsFromQ and
+  // 1 / kRouletteLots. One draw per shot would have them all gather, or none; the lots have a
+  // shot gather about a quarter of them, or none, and each point gathers with probability q
+  // over the shots.
   FarFloor f;
   ShotSource src = f.light();
   const float level = 1.0f / (std::numbers::pi_v<float> * 4.0f);  // reach 2, as above
@@ -94,8 +125,8 @@ TEST(Roulette, OfManyPointsOfOneQAShotGathersOneStratumOrNone) {
   std::vector<Vec3> points;
   for (int i = 0; i < 2000; ++i) points.push_back(Vec3(-0.45f + 4.5e-4f * float(i), 0.5f, depth));
   const Vec3 up(0.0f, 0.0f, 1.0f);
-  ASSERT_GE(0.1f, ShotSource::kStratifiedQ);
-  ASSERT_LT(0.1f, 1.0f / float(ShotSource::kRouletteStrata));
+  ASSERT_GE(0.1f, ShotSource::kLotsFromQ);
+  ASSERT_LT(0.1f, 1.0f / float(ShotSource::kRouletteLots));
   std::vector<int> gathered(points.size(), 0);
   int shots_gathering = 0;
   const int shots = 20000;
@@ -111,11 +142,11 @@ TEST(Roulette, OfManyPointsOfOneQAShotGathersOneStratumOrNone) {
     }
     if (n == 0) continue;
     ++shots_gathering;
-    // One stratum of four: binomial about 500 of 2,000, well within 400..600.
+    // One lot of four: binomial about 500 of 2,000 (standard deviation 19), well within 400..600.
     ASSERT_GT(n, 400u) << "shot " << shot;
     ASSERT_LT(n, 600u) << "shot " << shot;
   }
-  // A shot gathers some stratum with probability 4q = 0.4.
+  // A shot gathers some lot with probability 4q = 0.4.
   EXPECT_NEAR(double(shots_gathering) / shots, 0.4, 0.02);
   double mean = 0.0;
   for (int g : gathered) mean += double(g) / shots / double(points.size());
@@ -175,8 +206,8 @@ TEST(Roulette, ABoxBeyondReachHoldsNoPointThatGathers) {
       if (!reaches) {
         EXPECT_EQ(src.roulette_weight(x, n, slack), 0.0f);
       }
-      // A point that gathers lies in a triangle the shot reaches (the test bounds every
-      // stratum's draw, so it may reach a point whose own stratum does not gather).
+      // A point that gathers lies in a triangle the shot reaches (the test bounds every lot's
+      // draw, so it may reach a point whose own lot does not gather).
       Aabb point;
       point.extend(x);
       if (src.roulette_weight(x, n, 0.0f) > 0.0f) {
@@ -229,7 +260,7 @@ TEST(Roulette, TheFloorGainsTheSameOnAverageAndAShotSkipsWhatItDoesNotReach) {
   // nothing of it.
   ShotSource src = plain;
   int64_t shot = 1;
-  // A shot whose strata all draw high: the least of them (least_draw) at least 0.2.
+  // A shot whose lots all draw high: the least of them (least_draw) at least 0.2.
   for (aim_roulette(src, level, shot); src.least_draw(1.0f) < 0.2f;
        aim_roulette(src, level, ++shot)) {
   }
